@@ -1,0 +1,276 @@
+#include "core/mlp.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include "core/atomic_file.hpp"
+
+namespace rapid {
+
+namespace {
+constexpr float kLayerNormEps = 1e-5f;
+constexpr char kMagic[8] = {'R', 'A', 'P', 'I', 'D', 'M', 'L', 'P'};
+constexpr std::uint32_t kFormatVersion = 1;
+
+const char* kind_name(LayerKind k) {
+  switch (k) {
+    case LayerKind::kLinear: return "Linear";
+    case LayerKind::kLayerNorm: return "LN";
+    case LayerKind::kReLU: return "ReLU";
+    case LayerKind::kTanh: return "Tanh";
+  }
+  return "?";
+}
+
+std::uint64_t fnv1a(const char* data, std::size_t n) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (std::size_t i = 0; i < n; ++i) {
+    h ^= static_cast<unsigned char>(data[i]);
+    h *= 0x100000001b3ULL;
+  }
+  return h;
+}
+}  // namespace
+
+Mlp::Mlp(int input_dim, const std::vector<LayerSpec>& layers) : input_dim_(input_dim), specs_(layers) {
+  if (input_dim <= 0) throw std::invalid_argument("Mlp: input dimension must be positive");
+  if (layers.empty()) throw std::invalid_argument("Mlp: no layers");
+  int width = input_dim;
+  int offset = 0;
+  for (const LayerSpec& s : layers) {
+    Layer l;
+    l.kind = s.kind;
+    l.in = width;
+    if (s.kind == LayerKind::kLinear) {
+      if (s.out <= 0) throw std::invalid_argument("Mlp: Linear layer needs a positive width");
+      l.out = s.out;
+      l.w_off = offset;
+      offset += l.out * l.in;
+      l.b_off = offset;
+      offset += l.out;
+    } else if (s.kind == LayerKind::kLayerNorm) {
+      l.out = width;
+      l.w_off = offset;
+      offset += width;
+      l.b_off = offset;
+      offset += width;
+    } else {
+      l.out = width;
+    }
+    width = l.out;
+    layers_.push_back(std::move(l));
+  }
+  output_dim_ = width;
+  params_ = Vec::Zero(offset);
+  grads_ = Vec::Zero(offset);
+  for (Layer& l : layers_)
+    if (l.kind == LayerKind::kLayerNorm) params_.segment(l.w_off, l.out).setOnes();
+}
+
+Mlp Mlp::make(int input_dim, const std::vector<int>& hidden, int output_dim, bool layer_norm,
+              bool tanh_output) {
+  std::vector<LayerSpec> specs;
+  for (int h : hidden) {
+    specs.push_back({LayerKind::kLinear, h});
+    if (layer_norm) specs.push_back({LayerKind::kLayerNorm});
+    specs.push_back({LayerKind::kReLU});
+  }
+  specs.push_back({LayerKind::kLinear, output_dim});
+  if (tanh_output) specs.push_back({LayerKind::kTanh});
+  return Mlp(input_dim, specs);
+}
+
+void Mlp::init(Rng& rng, float final_scale) {
+  int last_linear = -1;
+  for (int i = 0; i < static_cast<int>(layers_.size()); ++i)
+    if (layers_[i].kind == LayerKind::kLinear) last_linear = i;
+  for (int i = 0; i < static_cast<int>(layers_.size()); ++i) {
+    const Layer& l = layers_[i];
+    if (l.kind == LayerKind::kLinear) {
+      const double bound = (i == last_linear) ? final_scale : 1.0 / std::sqrt(double(l.in));
+      for (int k = 0; k < l.out * l.in + l.out; ++k)
+        params_[l.w_off + k] = static_cast<float>(rng.uniform(-bound, bound));
+    } else if (l.kind == LayerKind::kLayerNorm) {
+      params_.segment(l.w_off, l.out).setOnes();
+      params_.segment(l.b_off, l.out).setZero();
+    }
+  }
+}
+
+void Mlp::forward_layer(Layer& l, const ConstMatRef& x) {
+  const Eigen::Index batch = x.cols();
+  switch (l.kind) {
+    case LayerKind::kLinear: {
+      Eigen::Map<const Mat> W(params_.data() + l.w_off, l.out, l.in);
+      Eigen::Map<const Vec> b(params_.data() + l.b_off, l.out);
+      l.x = x;
+      l.y.resize(l.out, batch);
+      l.y.noalias() = W * x;
+      l.y.colwise() += b;
+      break;
+    }
+    case LayerKind::kLayerNorm: {
+      Eigen::Map<const Vec> gain(params_.data() + l.w_off, l.out);
+      Eigen::Map<const Vec> shift(params_.data() + l.b_off, l.out);
+      l.tmp1 = x.colwise().mean();
+      l.xhat = x.rowwise() - l.tmp1;
+      l.inv_std = (l.xhat.array().square().colwise().mean() + kLayerNormEps).rsqrt().matrix();
+      l.xhat.array().rowwise() *= l.inv_std.array();
+      l.y = l.xhat;
+      l.y.array().colwise() *= gain.array();
+      l.y.colwise() += shift;
+      break;
+    }
+    case LayerKind::kReLU:
+      l.y = x.cwiseMax(0.0f);
+      break;
+    case LayerKind::kTanh:
+      l.y = x.array().tanh().matrix();
+      break;
+  }
+}
+
+const Mat& Mlp::forward(const ConstMatRef& x) {
+  if (x.rows() != input_dim_)
+    throw std::invalid_argument("Mlp::forward: input has " + std::to_string(x.rows()) +
+                                " rows, network expects " + std::to_string(input_dim_));
+  forward_layer(layers_[0], x);
+  for (std::size_t i = 1; i < layers_.size(); ++i) forward_layer(layers_[i], layers_[i - 1].y);
+  return layers_.back().y;
+}
+
+void Mlp::backward_layer(Layer& l, const ConstMatRef& dy, bool param_grads) {
+  switch (l.kind) {
+    case LayerKind::kLinear: {
+      Eigen::Map<const Mat> W(params_.data() + l.w_off, l.out, l.in);
+      if (param_grads) {
+        Eigen::Map<Mat> dW(grads_.data() + l.w_off, l.out, l.in);
+        Eigen::Map<Vec> db(grads_.data() + l.b_off, l.out);
+        dW.noalias() += dy * l.x.transpose();
+        db += dy.rowwise().sum();
+      }
+      l.dx.resize(l.in, dy.cols());
+      l.dx.noalias() = W.transpose() * dy;
+      break;
+    }
+    case LayerKind::kLayerNorm: {
+      // y = g⊙x̂ + b with x̂ = (x−μ)/σ per sample. With h = g⊙dy:
+      // dx = (h − mean(h) − x̂·mean(h⊙x̂)) / σ.
+      Eigen::Map<const Vec> gain(params_.data() + l.w_off, l.out);
+      if (param_grads) {
+        Eigen::Map<Vec> dgain(grads_.data() + l.w_off, l.out);
+        Eigen::Map<Vec> dshift(grads_.data() + l.b_off, l.out);
+        dgain += (dy.array() * l.xhat.array()).rowwise().sum().matrix();
+        dshift += dy.rowwise().sum();
+      }
+      l.dx = dy;
+      l.dx.array().colwise() *= gain.array();
+      l.tmp1 = l.dx.colwise().mean();
+      l.tmp2 = (l.dx.array() * l.xhat.array()).colwise().mean().matrix();
+      l.dx.rowwise() -= l.tmp1;
+      l.dx.array() -= l.xhat.array().rowwise() * l.tmp2.array();
+      l.dx.array().rowwise() *= l.inv_std.array();
+      break;
+    }
+    case LayerKind::kReLU:
+      l.dx = (l.y.array() > 0.0f).select(dy.array(), 0.0f).matrix();
+      break;
+    case LayerKind::kTanh:
+      l.dx = (dy.array() * (1.0f - l.y.array().square())).matrix();
+      break;
+  }
+}
+
+const Mat& Mlp::backward(const ConstMatRef& dy, bool param_grads) {
+  const int n = static_cast<int>(layers_.size());
+  if (dy.rows() != output_dim_ || dy.cols() != layers_.back().y.cols())
+    throw std::invalid_argument("Mlp::backward: gradient shape does not match the last forward");
+  backward_layer(layers_[n - 1], dy, param_grads);
+  for (int i = n - 2; i >= 0; --i) backward_layer(layers_[i], layers_[i + 1].dx, param_grads);
+  return layers_[0].dx;
+}
+
+bool Mlp::same_architecture(const Mlp& other) const {
+  if (input_dim_ != other.input_dim_ || layers_.size() != other.layers_.size()) return false;
+  for (std::size_t i = 0; i < layers_.size(); ++i)
+    if (layers_[i].kind != other.layers_[i].kind || layers_[i].out != other.layers_[i].out) return false;
+  return true;
+}
+
+std::string Mlp::describe() const {
+  std::string s = std::to_string(input_dim_);
+  for (const Layer& l : layers_) {
+    s += '-';
+    s += kind_name(l.kind);
+    if (l.kind == LayerKind::kLinear) s += std::to_string(l.out);
+  }
+  return s;
+}
+
+void Mlp::soft_update_from(const Mlp& source, float tau) {
+  if (!same_architecture(source)) throw std::invalid_argument("soft update between different networks");
+  params_ = tau * source.params_ + (1.0f - tau) * params_;
+}
+
+void Mlp::save(const std::string& path) const {
+  std::string buf(kMagic, sizeof kMagic);
+  auto put = [&buf](const auto& v) { buf.append(reinterpret_cast<const char*>(&v), sizeof v); };
+  put(kFormatVersion);
+  put(static_cast<std::int32_t>(input_dim_));
+  put(static_cast<std::int32_t>(specs_.size()));
+  for (const LayerSpec& s : specs_) {
+    put(static_cast<std::int32_t>(s.kind));
+    put(static_cast<std::int32_t>(s.kind == LayerKind::kLinear ? s.out : 0));
+  }
+  put(static_cast<std::int64_t>(params_.size()));
+  buf.append(reinterpret_cast<const char*>(params_.data()), sizeof(float) * params_.size());
+  put(fnv1a(buf.data(), buf.size()));
+  write_file_atomic(path, buf);
+}
+
+Mlp Mlp::load(const std::string& path) {
+  const std::string buf = read_file(path);
+  std::size_t pos = 0;
+  auto fail = [&path](const std::string& why) -> void {
+    throw std::runtime_error("checkpoint " + path + ": " + why);
+  };
+  auto get = [&](auto& v) {
+    if (pos + sizeof v > buf.size()) fail("truncated");
+    std::memcpy(&v, buf.data() + pos, sizeof v);
+    pos += sizeof v;
+  };
+  if (buf.size() < sizeof kMagic || std::memcmp(buf.data(), kMagic, sizeof kMagic) != 0)
+    fail("not a rapid network checkpoint");
+  pos = sizeof kMagic;
+  std::uint32_t version = 0;
+  get(version);
+  if (version != kFormatVersion) fail("unsupported format version " + std::to_string(version));
+  std::int32_t input_dim = 0, n_layers = 0;
+  get(input_dim);
+  get(n_layers);
+  if (input_dim <= 0 || n_layers <= 0 || n_layers > 1000) fail("corrupt header");
+  std::vector<LayerSpec> specs;
+  for (int i = 0; i < n_layers; ++i) {
+    std::int32_t kind = 0, out = 0;
+    get(kind);
+    get(out);
+    if (kind < 0 || kind > static_cast<int>(LayerKind::kTanh)) fail("unknown layer kind");
+    specs.push_back({static_cast<LayerKind>(kind), out});
+  }
+  Mlp net(input_dim, specs);
+  std::int64_t n_params = 0;
+  get(n_params);
+  if (n_params != net.params_.size()) fail("parameter count does not match its architecture");
+  const std::size_t bytes = sizeof(float) * static_cast<std::size_t>(n_params);
+  if (pos + bytes + sizeof(std::uint64_t) != buf.size()) fail("truncated or has trailing data");
+  std::memcpy(net.params_.data(), buf.data() + pos, bytes);
+  pos += bytes;
+  const std::uint64_t expected = fnv1a(buf.data(), pos);
+  std::uint64_t stored = 0;
+  get(stored);
+  if (stored != expected) fail("checksum mismatch (corrupt file)");
+  return net;
+}
+
+}  // namespace rapid

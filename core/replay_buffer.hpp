@@ -1,0 +1,79 @@
+// Replay storage: a fixed-capacity ring buffer of transitions (s, a, r, s', terminal, timeout),
+// uniform minibatch sampling into preallocated matrices, and the symmetric sampler that draws
+// half of every batch from a prior buffer and half from the online one (RLPD, RAPID-RL).
+#pragma once
+
+#include <cstddef>
+
+#include "core/rng.hpp"
+#include "core/tensor.hpp"
+
+namespace rapid {
+
+// A minibatch, one transition per column. Columns [0, prior_count) came from the prior buffer.
+struct Batch {
+  Mat obs, act, next_obs;
+  RowVec rew;
+  RowVec not_terminal;  // 1 − terminal: the critic target bootstraps through timeouts, not terminals
+  RowVec timeout;       // kept for diagnostics; never masks the target
+  int prior_count = 0;
+
+  void resize(int obs_dim, int act_dim, int batch_size);
+  int size() const { return static_cast<int>(obs.cols()); }
+};
+
+class ReplayBuffer {
+ public:
+  ReplayBuffer() = default;
+  ReplayBuffer(int obs_dim, int act_dim, std::size_t capacity);
+
+  // Stores one transition, overwriting the oldest once full. Allocates nothing.
+  void add(const ConstVecRef& obs, const ConstVecRef& act, float reward, const ConstVecRef& next_obs,
+           bool terminal, bool timeout);
+
+  // Fills columns [first, first + count) of `batch` with transitions drawn uniformly with
+  // replacement. The buffer must not be empty.
+  void sample_into(Rng& rng, Batch& batch, int first, int count) const;
+  // Copies transition i (0 = oldest still stored) into column `col` of `batch`.
+  void copy_into(std::size_t i, Batch& batch, int col) const;
+
+  std::size_t size() const { return size_; }
+  std::size_t capacity() const { return capacity_; }
+  bool empty() const { return size_ == 0; }
+  int obs_dim() const { return static_cast<int>(obs_.rows()); }
+  int act_dim() const { return static_cast<int>(act_.rows()); }
+
+  // Read access by storage slot (for dataset export); slot = (oldest + i) % capacity.
+  auto obs(std::size_t i) const { return obs_.col(slot(i)); }
+  auto act(std::size_t i) const { return act_.col(slot(i)); }
+  auto next_obs(std::size_t i) const { return next_obs_.col(slot(i)); }
+  float reward(std::size_t i) const { return rew_[slot(i)]; }
+  bool terminal(std::size_t i) const { return terminal_[slot(i)] != 0.0f; }
+  bool timeout(std::size_t i) const { return timeout_[slot(i)] != 0.0f; }
+
+ private:
+  Eigen::Index slot(std::size_t i) const {
+    const std::size_t oldest = size_ < capacity_ ? 0 : next_;
+    return static_cast<Eigen::Index>((oldest + i) % capacity_);
+  }
+  void copy_slot(Eigen::Index s, Batch& batch, int col) const;
+
+  Mat obs_, act_, next_obs_;
+  Vec rew_, terminal_, timeout_;
+  std::size_t capacity_ = 0, size_ = 0, next_ = 0;
+};
+
+// Draws B/2 transitions from the prior buffer into columns [0, B/2) and B − B/2 from the online
+// buffer into the rest (paper III-B-1). Without a prior buffer, the whole batch is online.
+class SymmetricSampler {
+ public:
+  SymmetricSampler(const ReplayBuffer* prior, const ReplayBuffer* online) : prior_(prior), online_(online) {}
+  void sample(Rng& rng, Batch& batch) const;
+  bool has_prior() const { return prior_ != nullptr; }
+
+ private:
+  const ReplayBuffer* prior_;
+  const ReplayBuffer* online_;
+};
+
+}  // namespace rapid

@@ -1,0 +1,56 @@
+// The environment interface every task implements: the three SUMO driving scenarios and the
+// SUMO-free pendulum. Observations are written into a caller-owned vector so that a step
+// allocates nothing.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/tensor.hpp"
+
+namespace rapid {
+
+struct StepInfo {
+  bool collision = false;
+  double ego_speed = 0.0;       // m/s (pendulum: angular velocity)
+  int lane_changes = 0;         // lane changes completed during this decision
+  bool lane_change_failed = false;  // a commanded lane change that could not happen
+};
+
+struct StepResult {
+  float reward = 0.0f;
+  bool terminated = false;  // true end of the episode (collision): no bootstrapping
+  bool truncated = false;   // time limit reached: bootstrap through it
+  StepInfo info;
+};
+
+class Env {
+ public:
+  virtual ~Env() = default;
+
+  virtual std::string name() const = 0;
+  virtual int obs_dim() const = 0;
+  virtual int act_dim() const = 0;
+  // Decisions per episode before truncation.
+  virtual int horizon() const = 0;
+  // The scenario's documented RAPID-RL threshold ε, in its own reward units.
+  virtual float default_epsilon() const = 0;
+
+  // Starts a new episode whose randomness is fully determined by `seed`; writes s_0 into `obs`.
+  virtual void reset(std::uint64_t seed, VecRef obs) = 0;
+  // Applies `action` (each entry in [-1, 1]; clipped) for one decision; writes s_{t+1} into `obs`.
+  virtual StepResult step(const ConstVecRef& action, VecRef obs) = 0;
+
+  // Lets the simulator's own driver control the agent (the `sumo` reference policy); actions
+  // passed to step() are then ignored. Environments without such a driver throw.
+  virtual void set_builtin_driver(bool on);
+};
+
+// Names accepted by make_env, in a stable order.
+const std::vector<std::string>& env_names();
+// Throws std::invalid_argument("unknown scenario '…'; expected one of …") for an unknown name.
+std::unique_ptr<Env> make_env(const std::string& name);
+
+}  // namespace rapid

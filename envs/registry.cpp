@@ -1,0 +1,25 @@
+// The name → environment table behind `--scenario`.
+#include <stdexcept>
+
+#include "envs/env.hpp"
+#include "envs/pendulum.hpp"
+
+namespace rapid {
+
+void Env::set_builtin_driver(bool) {
+  throw std::invalid_argument("scenario '" + name() + "' has no built-in driver");
+}
+
+const std::vector<std::string>& env_names() {
+  static const std::vector<std::string> names = {"pendulum"};
+  return names;
+}
+
+std::unique_ptr<Env> make_env(const std::string& name) {
+  if (name == "pendulum") return std::make_unique<PendulumEnv>();
+  std::string known;
+  for (const auto& n : env_names()) known += (known.empty() ? "" : ", ") + n;
+  throw std::invalid_argument("unknown scenario '" + name + "'; expected one of " + known);
+}
+
+}  // namespace rapid

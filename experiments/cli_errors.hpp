@@ -1,0 +1,21 @@
+// The command line's error contract (SPEC §3): bad input exits 2 with one line naming the
+// offending field or value; a run that fails exits 1.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace rapid {
+
+// Thrown for bad user input (unknown name, malformed value, missing file given on the command
+// line). main() prints "rapid: error: <message>" and exits 2.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailed = 1;
+inline constexpr int kExitUsage = 2;
+
+}  // namespace rapid

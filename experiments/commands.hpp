@@ -1,0 +1,17 @@
+// Each `rapid` subcommand lives in its own cmd_<name>.cpp and registers itself here: it adds its
+// CLI11 subcommand (options bound to state captured by `run`) and returns both.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace rapid {
+
+struct Command {
+  CLI::App* app;             // the subcommand; `run` is called when it was given
+  std::function<int()> run;  // returns the process exit code; may throw (see cli_errors.hpp)
+};
+
+Command add_rollout_command(CLI::App& parent);
+
+}  // namespace rapid

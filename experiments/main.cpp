@@ -1,0 +1,40 @@
+// `rapid`: the harness's one command line. See SPEC §3 and the README.
+#include <iostream>
+#include <vector>
+
+#include "experiments/cli_errors.hpp"
+#include "experiments/commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"rapid: reproduction harness for RAPID-RL (selective imitation from prior data)"};
+  app.require_subcommand(1);
+  const std::vector<rapid::Command> commands = {
+      rapid::add_rollout_command(app),
+  };
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "rapid: error: " << e.what() << "\n";
+    return rapid::kExitUsage;
+  }
+  for (const rapid::Command& command : commands) {
+    if (!command.app->parsed()) continue;
+    try {
+      return command.run();
+    } catch (const rapid::UsageError& e) {
+      std::cerr << "rapid: error: " << e.what() << "\n";
+      return rapid::kExitUsage;
+    } catch (const std::exception& e) {
+      std::cerr << "rapid: failed: " << e.what() << "\n";
+      return rapid::kExitFailed;
+    }
+  }
+  return rapid::kExitUsage;
+}

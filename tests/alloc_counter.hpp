@@ -1,0 +1,14 @@
+// A counting allocator for tests: linking alloc_counter.cpp into a test binary replaces malloc
+// and friends (glibc allows the main program to do so) with versions that count calls while
+// counting is on. operator new goes through malloc, so C++ allocations are counted too.
+#pragma once
+
+#include <cstddef>
+
+namespace rapid::test {
+
+void start_counting_allocations();
+// Stops counting and returns the number of allocations since start.
+std::size_t stop_counting_allocations();
+
+}  // namespace rapid::test

@@ -1,0 +1,199 @@
+// Gradients of every layer and of whole networks against central finite differences, plus
+// save/load and the soft update.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "core/mlp.hpp"
+
+using namespace rapid;
+
+namespace {
+
+// A scalar loss L = Σ R ⊙ f(x) with a fixed random R, accumulated in double.
+double loss(Mlp& net, const Mat& x, const Mat& R) {
+  return (net.forward(x).cast<double>().array() * R.cast<double>().array()).sum();
+}
+
+Mat random_mat(Rng& rng, int rows, int cols, double scale = 1.0) {
+  Mat m(rows, cols);
+  for (int i = 0; i < m.size(); ++i) m.data()[i] = static_cast<float>(rng.uniform(-scale, scale));
+  return m;
+}
+
+// Checks dL/dθ and dL/dx from backward() against central differences of loss().
+void check_gradients(Mlp& net, int batch, std::uint64_t seed) {
+  Rng rng(seed);
+  const Mat x = random_mat(rng, net.input_dim(), batch);
+  const Mat R = random_mat(rng, net.output_dim(), batch);
+  net.forward(x);
+  net.zero_grad();
+  const Mat dx = net.backward(R);
+  const Vec grads = net.grads();
+
+  auto near = [](double analytic, double numeric) {
+    return std::abs(analytic - numeric) <= 2e-3 + 2e-2 * std::max(std::abs(analytic), std::abs(numeric));
+  };
+  // Central difference of L in one coordinate. A step can carry a ReLU input across its kink and
+  // bend the difference; that error shrinks with the step while a wrong gradient does not, so a
+  // mismatch is retried with smaller steps before it counts.
+  auto agrees = [&](float* v, double analytic, const Mat& input, double* last) {
+    const float saved = *v;
+    for (float h : {1e-3f, 3e-4f, 1e-4f}) {
+      *v = saved + h;
+      const double up = loss(net, input, R);
+      *v = saved - h;
+      const double down = loss(net, input, R);
+      *v = saved;
+      *last = (up - down) / (2.0 * h);
+      if (near(analytic, *last)) return true;
+    }
+    return false;
+  };
+  double numeric = 0;
+  for (Eigen::Index i = 0; i < net.params().size(); ++i)
+    ASSERT_TRUE(agrees(&net.params()[i], grads[i], x, &numeric))
+        << net.describe() << " parameter " << i << ": analytic " << grads[i] << " numeric " << numeric;
+  Mat xp = x;
+  for (Eigen::Index i = 0; i < x.size(); ++i)
+    ASSERT_TRUE(agrees(&xp.data()[i], dx.data()[i], xp, &numeric))
+        << net.describe() << " input " << i << ": analytic " << dx.data()[i] << " numeric " << numeric;
+}
+
+// Random parameters everywhere, LayerNorm gains and shifts included (init() leaves them at 1, 0).
+void randomize(Mlp& net, std::uint64_t seed) {
+  Rng rng(seed);
+  for (Eigen::Index i = 0; i < net.params().size(); ++i)
+    net.params()[i] = static_cast<float>(rng.uniform(-0.8, 0.8));
+}
+
+}  // namespace
+
+TEST(MlpGradients, Linear) {
+  Mlp net(5, {{LayerKind::kLinear, 4}});
+  randomize(net, 1);
+  check_gradients(net, 3, 11);
+}
+
+TEST(MlpGradients, LayerNorm) {
+  Mlp net(6, {{LayerKind::kLayerNorm}});
+  randomize(net, 2);
+  check_gradients(net, 4, 12);
+}
+
+TEST(MlpGradients, ReLU) {
+  // A linear layer in front keeps the ReLU inputs away from the kink for this seed's batch.
+  Mlp net(4, {{LayerKind::kLinear, 6}, {LayerKind::kReLU}});
+  randomize(net, 3);
+  check_gradients(net, 3, 13);
+}
+
+TEST(MlpGradients, Tanh) {
+  Mlp net(4, {{LayerKind::kTanh}});
+  check_gradients(net, 5, 14);
+}
+
+TEST(MlpGradients, CriticShapedNetworkWithLayerNorm) {
+  Mlp net = Mlp::make(7, {16, 12}, 1, /*layer_norm=*/true, /*tanh_output=*/false);
+  randomize(net, 4);
+  check_gradients(net, 6, 15);
+}
+
+TEST(MlpGradients, ActorShapedNetworkWithTanh) {
+  Mlp net = Mlp::make(5, {16, 16}, 2, /*layer_norm=*/false, /*tanh_output=*/true);
+  randomize(net, 5);
+  check_gradients(net, 4, 16);
+}
+
+TEST(MlpGradients, BackwardAccumulatesAndCanSkipParameters) {
+  Mlp net = Mlp::make(3, {8}, 2, true, false);
+  Rng rng(6);
+  net.init(rng);
+  const Mat x = random_mat(rng, 3, 4), R = random_mat(rng, 2, 4);
+  net.forward(x);
+  net.zero_grad();
+  net.backward(R);
+  const Vec once = net.grads();
+  net.forward(x);
+  net.backward(R);
+  EXPECT_TRUE(net.grads().isApprox(2.0f * once));
+  net.zero_grad();
+  net.forward(x);
+  const Mat dx = net.backward(R, /*param_grads=*/false);
+  EXPECT_EQ(net.grads().squaredNorm(), 0.0f);
+  EXPECT_GT(dx.squaredNorm(), 0.0f);
+}
+
+TEST(Mlp, InitIsSeededAndScaled) {
+  Mlp a = Mlp::make(10, {32}, 2, true, true), b = Mlp::make(10, {32}, 2, true, true);
+  Rng ra(9), rb(9);
+  a.init(ra);
+  b.init(rb);
+  EXPECT_EQ(a.params(), b.params());
+  // The output layer starts small (|w| ≤ 3e-3), hidden layers at fan-in scale.
+  Mat x = Mat::Ones(10, 1);
+  EXPECT_LT(a.forward(x).cwiseAbs().maxCoeff(), 0.2f);
+}
+
+TEST(Mlp, RejectsWrongInputSize) {
+  Mlp net = Mlp::make(3, {4}, 1, false, false);
+  EXPECT_THROW(net.forward(Mat::Zero(4, 2)), std::invalid_argument);
+}
+
+TEST(Mlp, SoftUpdate) {
+  Mlp a = Mlp::make(2, {3}, 1, true, false), b = a;
+  a.params().setConstant(1.0f);
+  b.params().setConstant(3.0f);
+  a.soft_update_from(b, 0.25f);
+  EXPECT_TRUE(a.params().isApproxToConstant(1.5f));
+  Mlp other = Mlp::make(2, {4}, 1, true, false);
+  EXPECT_THROW(a.soft_update_from(other, 0.1f), std::invalid_argument);
+}
+
+class MlpFile : public ::testing::Test {
+ protected:
+  std::string path = (std::filesystem::temp_directory_path() / ("rapid_mlp_test_" + std::to_string(::getpid()))).string();
+  void TearDown() override { std::filesystem::remove(path); }
+};
+
+TEST_F(MlpFile, SaveLoadRoundTripsBitExactly) {
+  Mlp net = Mlp::make(5, {16, 16}, 2, true, true);
+  Rng rng(3);
+  net.init(rng);
+  randomize(net, 8);
+  net.save(path);
+  Mlp back = Mlp::load(path);
+  ASSERT_TRUE(back.same_architecture(net));
+  EXPECT_EQ(0, std::memcmp(back.params().data(), net.params().data(), sizeof(float) * net.params().size()));
+  const Mat x = Mat::Random(5, 3);
+  EXPECT_EQ(back.forward(x), net.forward(x));
+}
+
+TEST_F(MlpFile, CorruptAndTruncatedFilesAreRejected) {
+  Mlp net = Mlp::make(4, {8}, 1, false, false);
+  net.save(path);
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), bytes.size() - 7);
+  }
+  EXPECT_THROW(Mlp::load(path), std::runtime_error);
+  bytes[bytes.size() / 2] ^= 0x5a;
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), bytes.size());
+  }
+  try {
+    Mlp::load(path);
+    FAIL() << "a flipped byte must be detected";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("checksum"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(Mlp::load(path + ".missing"), std::runtime_error);
+}
