@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "core/mlp.hpp"
+#include "tests/finite_difference.hpp"
 
 using namespace rapid;
 
@@ -33,32 +34,13 @@ void check_gradients(Mlp& net, int batch, std::uint64_t seed) {
   const Mat dx = net.backward(R);
   const Vec grads = net.grads();
 
-  auto near = [](double analytic, double numeric) {
-    return std::abs(analytic - numeric) <= 2e-3 + 2e-2 * std::max(std::abs(analytic), std::abs(numeric));
-  };
-  // Central difference of L in one coordinate. A step can carry a ReLU input across its kink and
-  // bend the difference; that error shrinks with the step while a wrong gradient does not, so a
-  // mismatch is retried with smaller steps before it counts.
-  auto agrees = [&](float* v, double analytic, const Mat& input, double* last) {
-    const float saved = *v;
-    for (float h : {1e-3f, 3e-4f, 1e-4f}) {
-      *v = saved + h;
-      const double up = loss(net, input, R);
-      *v = saved - h;
-      const double down = loss(net, input, R);
-      *v = saved;
-      *last = (up - down) / (2.0 * h);
-      if (near(analytic, *last)) return true;
-    }
-    return false;
-  };
   double numeric = 0;
   for (Eigen::Index i = 0; i < net.params().size(); ++i)
-    ASSERT_TRUE(agrees(&net.params()[i], grads[i], x, &numeric))
+    ASSERT_TRUE(test::central_difference_agrees([&] { return loss(net, x, R); }, &net.params()[i], grads[i], &numeric))
         << net.describe() << " parameter " << i << ": analytic " << grads[i] << " numeric " << numeric;
   Mat xp = x;
   for (Eigen::Index i = 0; i < x.size(); ++i)
-    ASSERT_TRUE(agrees(&xp.data()[i], dx.data()[i], xp, &numeric))
+    ASSERT_TRUE(test::central_difference_agrees([&] { return loss(net, xp, R); }, &xp.data()[i], dx.data()[i], &numeric))
         << net.describe() << " input " << i << ": analytic " << dx.data()[i] << " numeric " << numeric;
 }
 
