@@ -10,6 +10,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   const std::vector<rapid::Command> commands = {
       rapid::add_rollout_command(app),
+      rapid::add_dataset_command(app),
+      rapid::add_run_command(app),
   };
 
   try {

@@ -1,0 +1,85 @@
+// The DDPG actor-critic backbone every algorithm shares (paper Algorithm 1, eqs. (2)–(3)):
+// deterministic tanh actor, critic Q(s, a) with LayerNorm after each hidden layer, target
+// networks with Polyak averaging, Adam.
+//
+// An algorithm is this class plus two answers (see the files beside this one):
+//   uses_prior()   whether half of every batch comes from the prior dataset,
+//   bc_weights()   the per-sample weight w_i of the imitation term in the actor loss
+//                  L(φ) = −(1/B) Σ Q(s_i, π(s_i)) + (1/B) Σ w_i ‖π(s_i) − a_i‖².
+// The backbone (DDPG) answers "no" and "all zero".
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "algos/agent_config.hpp"
+#include "core/adam.hpp"
+#include "core/mlp.hpp"
+#include "core/replay_buffer.hpp"
+
+namespace rapid {
+
+// What one gradient step measured; the unweighted BC losses feed Figure 3(b).
+struct UpdateStats {
+  float critic_loss = 0.0f;
+  float actor_loss = 0.0f;      // the whole actor objective, BC term included
+  float bc_term = 0.0f;         // (1/B) Σ w_i ‖π(s_i) − a_i‖²
+  float q_mean = 0.0f;          // mean Q(s, a) over the batch
+  float bc_prior = 0.0f;        // mean ‖π(s) − a‖² over the prior columns (NaN if none)
+  float bc_online = 0.0f;       // mean ‖π(s) − a‖² over the online columns
+  bool finite = true;           // false if a loss came out NaN or inf
+};
+
+class ActorCritic {
+ public:
+  ActorCritic(int obs_dim, int act_dim, const AgentConfig& config, std::uint64_t init_seed);
+  virtual ~ActorCritic() = default;
+
+  virtual std::string name() const { return "ddpg"; }
+  virtual bool uses_prior() const { return false; }
+
+  // Deterministic action π(s) for one observation (no allocation after the first call).
+  const Mat& act(const ConstVecRef& obs);
+
+  // One gradient step on `batch`: the actor on (2), then the critic on (3), then the targets
+  // (Algorithm 1's order).
+  UpdateStats update(const Batch& batch);
+
+  // The critic's target y = r + γ·(1 − terminal)·Q'(s', π'(s')); timeouts bootstrap.
+  const RowVec& critic_targets(const Batch& batch);
+
+  // The actor loss (2) on `batch`, leaving dL/dφ in actor().grads(); changes no parameter.
+  // Exposed so tests can check the gradient against finite differences.
+  float actor_loss(const Batch& batch);
+
+  bool parameters_finite() const;
+  const AgentConfig& config() const { return config_; }
+  Mlp& actor() { return actor_; }
+  Mlp& critic() { return critic_; }
+
+ protected:
+  // w_i of the imitation term for each column of `batch` (w has batch.size() entries).
+  virtual void bc_weights(const Batch& batch, RowVec& w) const;
+
+ private:
+  // Fills pi_ = π(s), dpi_ = dL/dπ(s) and the actor-side fields of `stats`; returns L(φ).
+  float actor_objective(const Batch& batch, UpdateStats& stats);
+  void actor_step(const Batch& batch, UpdateStats& stats);
+  void critic_step(const Batch& batch, UpdateStats& stats);
+  // Writes [s; a] into the critic's input buffer.
+  const Mat& critic_input(const Mat& obs, const Mat& act);
+
+  AgentConfig config_;
+  int obs_dim_, act_dim_;
+  Mlp actor_, critic_, actor_target_, critic_target_;
+  // A copy of the actor for single observations, so acting (batch 1) and updating (batch B) each
+  // keep buffers of one size and neither reallocates; synced lazily after updates.
+  Mlp acting_actor_;
+  bool acting_actor_stale_ = false;
+  Adam actor_opt_, critic_opt_;
+  // Preallocated per-update buffers.
+  Mat sa_, pi_, dpi_, dq_, single_obs_;
+  RowVec y_, w_, sq_err_;
+};
+
+}  // namespace rapid

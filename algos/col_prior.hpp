@@ -1,0 +1,22 @@
+// CoL-prior: RLPD plus λ_BC times the mean imitation error over the prior half of the batch.
+#pragma once
+
+#include "algos/rlpd.hpp"
+
+namespace rapid {
+
+class ColPrior : public Rlpd {
+ public:
+  using Rlpd::Rlpd;
+  std::string name() const override { return "col-prior"; }
+
+ protected:
+  // (1/B) Σ w_i e_i = λ · mean over the prior columns of e_i  ⇔  w_i = λ·B/n_prior there, 0 else.
+  void bc_weights(const Batch& batch, RowVec& w) const override {
+    const int n = batch.prior_count;
+    w.setZero(batch.size());
+    if (n > 0) w.head(n).setConstant(config().lambda_bc * batch.size() / static_cast<float>(n));
+  }
+};
+
+}  // namespace rapid

@@ -1,0 +1,21 @@
+// RAPID-RL (paper eq. 2): RLPD plus a selective imitation term over the whole batch, each
+// transition weighted by relu(r − ε): actions whose reward beats the threshold ε are imitated in
+// proportion to the margin, the rest not at all.
+#pragma once
+
+#include "algos/rlpd.hpp"
+
+namespace rapid {
+
+class RapidRl : public Rlpd {
+ public:
+  using Rlpd::Rlpd;
+  std::string name() const override { return "rapid-rl"; }
+
+ protected:
+  void bc_weights(const Batch& batch, RowVec& w) const override {
+    w = (batch.rew.array() - config().epsilon).cwiseMax(0.0f).matrix();
+  }
+};
+
+}  // namespace rapid

@@ -1,0 +1,135 @@
+#include "experiments/job.hpp"
+
+#include <filesystem>
+#include <iostream>
+
+#include "algos/registry.hpp"
+#include "core/atomic_file.hpp"
+#include "core/dataset.hpp"
+#include "core/dataset_io.hpp"
+#include "envs/env.hpp"
+#include "experiments/provenance.hpp"
+#include "experiments/trainer.hpp"
+
+namespace rapid {
+
+namespace fs = std::filesystem;
+
+std::string job_config_hash(const JobSpec& spec) {
+  nlohmann::json key = {{"scenario", spec.scenario}, {"algo", spec.algo}, {"seed", spec.seed},
+                        {"config", spec.config}, {"dataset", nullptr}};
+  if (!spec.dataset_path.empty()) key["dataset"] = fnv1a_hex(read_file(spec.dataset_path));
+  if (!spec.checkpoint_steps.empty()) key["checkpoint_steps"] = spec.checkpoint_steps;
+  return fnv1a_hex(key.dump());
+}
+
+nlohmann::json resolve_config(const std::string& scenario, const nlohmann::json& grid_overrides,
+                              const nlohmann::json& set_overrides) {
+  nlohmann::json config = default_config_json(scenario);
+  if (grid_overrides.is_object()) apply_overrides(config, grid_overrides, "grid");
+  if (set_overrides.is_object()) apply_overrides(config, set_overrides, "--set");
+  run_config_from_json(config);  // validates values
+  return config;
+}
+
+namespace {
+
+// null for NaN/inf, which JSON cannot hold (bc_prior without a prior buffer).
+nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+nlohmann::json log_to_json(const TrainLog& log, nlohmann::json& record) {
+  record["eval"] = nlohmann::json::array();
+  for (const EvalPoint& e : log.eval)
+    record["eval"].push_back({{"step", e.step}, {"target_step", e.target_step}, {"return_mean", e.return_mean},
+                              {"return_std", e.return_std}, {"collision_rate", e.collision_rate}});
+  record["train_episodes"] = nlohmann::json::array();
+  for (const TrainEpisode& e : log.episodes)
+    record["train_episodes"].push_back(
+        {{"step", e.step}, {"return", e.ret}, {"length", e.length}, {"collision", e.collision}});
+  record["bc_loss"] = nlohmann::json::array();
+  record["losses"] = nlohmann::json::array();
+  for (const LossPoint& p : log.losses) {
+    record["bc_loss"].push_back({{"step", p.step}, {"prior", number_or_null(p.bc_prior)}, {"online", number_or_null(p.bc_online)}});
+    record["losses"].push_back({{"step", p.step}, {"critic", number_or_null(p.critic_loss)},
+                                {"actor", number_or_null(p.actor_loss)}, {"q_mean", number_or_null(p.q_mean)}});
+  }
+  return record;
+}
+
+void write_progress(const std::string& dir, long step, long steps, double steps_per_s) {
+  const nlohmann::json p = {{"step", step}, {"steps", steps}, {"steps_per_s", steps_per_s}};
+  write_file_atomic(dir + "/progress.json", p.dump());
+}
+
+}  // namespace
+
+int run_job(const JobSpec& spec) {
+  const RunConfig config = run_config_from_json(spec.config);
+  std::unique_ptr<Env> env = make_env(spec.scenario);
+  const bool needs_prior = algo_uses_prior(spec.algo);
+  if (needs_prior && spec.dataset_path.empty())
+    throw std::invalid_argument("algorithm '" + spec.algo + "' needs --dataset");
+  if (!needs_prior && !spec.dataset_path.empty())
+    throw std::invalid_argument("algorithm '" + spec.algo + "' takes no dataset");
+  fs::create_directories(spec.out_dir);
+
+  nlohmann::json record = {
+      {"schema", kRunRecordSchema},
+      {"status", "failed"},
+      {"error", nullptr},
+      {"cell", {{"scenario", spec.scenario},
+                {"dataset", spec.dataset.empty() ? nlohmann::json(nullptr) : nlohmann::json(spec.dataset)},
+                {"algo", spec.algo},
+                {"seed", spec.seed}}},
+      {"config", spec.config},
+      {"provenance", provenance_json()},
+  };
+  record["provenance"]["start_time"] = utc_now_iso8601();
+  const auto t0 = std::chrono::steady_clock::now();
+  TrainLog log;
+  try {
+    record["config_hash"] = job_config_hash(spec);
+    ReplayBuffer prior;
+    if (needs_prior) {
+      const Dataset data =
+          read_dataset(spec.dataset_path, {env->obs_dim(), env->act_dim(), spec.scenario});
+      prior = make_prior_buffer(data);
+      record["dataset_file"] = spec.dataset_path;
+    }
+    AgentConfig agent_config = config.agent;
+    auto agent = make_agent(spec.algo, env->obs_dim(), env->act_dim(), agent_config,
+                            stream_seed(spec.seed, Stream::kNetworkInit));
+    TrainHooks hooks;
+    hooks.checkpoint_steps = spec.checkpoint_steps;
+    hooks.checkpoint = [&](long step) { agent->actor().save(spec.out_dir + "/actor_" + std::to_string(step) + ".ckpt"); };
+    hooks.progress = [&](long step, const TrainLog& l) {
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      write_progress(spec.out_dir, step, config.steps, s > 0 ? l.env_steps / s : 0.0);
+    };
+    log = train(*env, *agent, needs_prior ? &prior : nullptr, config, spec.seed, hooks);
+    agent->actor().save(spec.out_dir + "/actor.ckpt");
+    record["status"] = "ok";
+  } catch (const DivergedError& e) {
+    record["status"] = "diverged";
+    record["error"] = e.what();
+  } catch (const std::exception& e) {
+    record["status"] = "failed";
+    record["error"] = e.what();
+  }
+  log_to_json(log, record);
+  const auto [final_mean, final_std] = final_performance(log, config.last_k);
+  record["final"] = {{"return_mean", final_mean}, {"return_std", final_std}, {"last_k", config.last_k}};
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  record["timing"] = {{"wall_s", wall},
+                      {"env_steps_per_s", log.env_seconds > 0 ? log.env_steps / log.env_seconds : 0.0},
+                      {"updates_per_s", log.update_seconds > 0 ? log.updates / log.update_seconds : 0.0},
+                      {"eval_s", log.eval_seconds},
+                      {"train_steps_per_s", wall > 0 ? log.env_steps / wall : 0.0}};
+  record["provenance"]["end_time"] = utc_now_iso8601();
+  write_file_atomic(spec.out_dir + "/record.json", record.dump(1));
+  if (record["status"] != "ok") std::cerr << "rapid run: " << record["status"].get<std::string>() << ": "
+                                          << record["error"].get<std::string>() << "\n";
+  return record["status"] == "ok" ? 0 : 1;
+}
+
+}  // namespace rapid

@@ -1,0 +1,39 @@
+// One training job: a table cell (scenario, dataset, algorithm, seed) with its resolved config.
+// run_job trains it and writes its run record (SPEC §8) atomically into the job folder.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace rapid {
+
+inline constexpr const char* kRunRecordSchema = "rapid.run/1";
+
+struct JobSpec {
+  std::string scenario;
+  std::string algo;
+  std::string dataset;       // the name in the table ("initial", …) or a path; empty for ddpg
+  std::string dataset_path;  // the file it resolves to; empty for ddpg
+  std::uint64_t seed = 0;
+  nlohmann::json config;     // fully resolved (run_config.hpp)
+  std::string out_dir;
+  std::vector<long> checkpoint_steps;  // extra actor checkpoints (reference agents)
+};
+
+// The hash that says whether a finished record still answers this job: the cell, the resolved
+// config and the dataset file's content. Code revision is deliberately not part of it.
+std::string job_config_hash(const JobSpec& spec);
+
+// Resolves the config of a cell: the scenario's defaults, then the grid's overrides (if
+// `grid_overrides` is an object), then `--set` overrides. Throws std::invalid_argument naming the
+// offending key.
+nlohmann::json resolve_config(const std::string& scenario, const nlohmann::json& grid_overrides,
+                              const nlohmann::json& set_overrides);
+
+// Trains the job and writes out_dir/record.json (status ok, diverged or failed) plus
+// out_dir/actor.ckpt and out_dir/progress.json. Returns 0 when the record says ok, 1 otherwise.
+// Throws (writing nothing) only for problems with the spec itself.
+int run_job(const JobSpec& spec);
+
+}  // namespace rapid

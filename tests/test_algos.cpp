@@ -1,0 +1,167 @@
+// The five algorithms: actor-loss gradients against finite differences, each variant's
+// imitation term, and the critic target's terminal/timeout handling.
+#include <gtest/gtest.h>
+
+#include "algos/registry.hpp"
+#include "tests/finite_difference.hpp"
+
+using namespace rapid;
+
+namespace {
+
+constexpr int kObs = 4, kAct = 2, kBatch = 8;
+
+AgentConfig small_config() {
+  AgentConfig c;
+  c.actor_hidden = {8, 8};
+  c.critic_hidden = {8, 8};
+  c.epsilon = -0.15f;
+  c.lambda_bc = 1.0f;
+  return c;
+}
+
+// A hand-made batch: first half "prior", rewards spread around ε = −0.15.
+Batch hand_made_batch() {
+  Batch b;
+  b.resize(kObs, kAct, kBatch);
+  Rng rng(3);
+  for (int i = 0; i < b.obs.size(); ++i) b.obs.data()[i] = static_cast<float>(rng.uniform(-1, 1));
+  for (int i = 0; i < b.next_obs.size(); ++i) b.next_obs.data()[i] = static_cast<float>(rng.uniform(-1, 1));
+  for (int i = 0; i < b.act.size(); ++i) b.act.data()[i] = static_cast<float>(rng.uniform(-1, 1));
+  b.rew << -1.0f, -0.15f, 0.2f, 0.9f, -0.5f, 0.05f, -0.16f, 0.6f;
+  b.not_terminal.setOnes();
+  b.timeout.setZero();
+  b.prior_count = kBatch / 2;
+  return b;
+}
+
+std::unique_ptr<ActorCritic> agent(const std::string& name) {
+  return make_agent(name, kObs, kAct, small_config(), 17);
+}
+
+}  // namespace
+
+class ActorLossGradient : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ActorLossGradient, AgreesWithFiniteDifferences) {
+  auto a = agent(GetParam());
+  // Move the critic away from its near-zero init so the Q term carries weight too.
+  Rng rng(5);
+  for (Eigen::Index i = 0; i < a->critic().params().size(); ++i)
+    a->critic().params()[i] += static_cast<float>(rng.uniform(-0.5, 0.5));
+  for (Eigen::Index i = 0; i < a->actor().params().size(); ++i)
+    a->actor().params()[i] += static_cast<float>(rng.uniform(-0.3, 0.3));
+  const Batch batch = hand_made_batch();
+  a->actor_loss(batch);
+  const Vec grads = a->actor().grads();
+  ASSERT_GT(grads.norm(), 0.0f);
+  double numeric = 0;
+  for (Eigen::Index i = 0; i < grads.size(); ++i) {
+    ASSERT_TRUE(test::central_difference_agrees([&] { return static_cast<double>(a->actor_loss(batch)); },
+                                                &a->actor().params()[i], grads[i], &numeric))
+        << GetParam() << " actor parameter " << i << ": analytic " << grads[i] << " numeric " << numeric;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllAlgorithms, ActorLossGradient,
+                         ::testing::Values("ddpg", "rlpd", "col-prior", "col-all", "rapid-rl"),
+                         [](const auto& info) {
+                           std::string n = info.param;
+                           std::replace(n.begin(), n.end(), '-', '_');
+                           return n;
+                         });
+
+namespace {
+// The imitation part of a variant's loss: its actor loss minus DDPG's on identical networks.
+double bc_part(const std::string& name, const Batch& batch) {
+  return static_cast<double>(agent(name)->actor_loss(batch)) - agent("ddpg")->actor_loss(batch);
+}
+}  // namespace
+
+TEST(RapidRl, ImitatesOnlyAboveThresholdWeightedByTheMargin) {
+  const Batch batch = hand_made_batch();
+  auto a = agent("rapid-rl");
+  const Mat pi = a->actor().forward(batch.obs);
+  double expected = 0;
+  for (int i = 0; i < kBatch; ++i) {
+    const double w = std::max(0.0f, batch.rew[i] - (-0.15f));
+    expected += w * (pi.col(i) - batch.act.col(i)).squaredNorm();
+  }
+  expected /= kBatch;
+  EXPECT_NEAR(bc_part("rapid-rl", batch), expected, 1e-5);
+
+  // Moving the action of a transition with r ≤ ε changes nothing; with r > ε it changes the loss
+  // by (r − ε)/B times the change in squared error.
+  for (int col : {0, 1, 4, 6}) {  // r = −1, −0.15 (= ε), −0.5, −0.16
+    Batch moved = batch;
+    moved.act.col(col).array() += 0.7f;
+    EXPECT_NEAR(bc_part("rapid-rl", moved), bc_part("rapid-rl", batch), 1e-6) << "column " << col;
+  }
+  Batch moved = batch;
+  moved.act.col(3).array() += 0.7f;  // r = 0.9: weight 1.05
+  const double delta_sq = (pi.col(3) - moved.act.col(3)).squaredNorm() - (pi.col(3) - batch.act.col(3)).squaredNorm();
+  EXPECT_NEAR(bc_part("rapid-rl", moved) - bc_part("rapid-rl", batch), 1.05 * delta_sq / kBatch, 1e-5);
+}
+
+TEST(ColPrior, BcTermIgnoresTheOnlineHalf) {
+  const Batch batch = hand_made_batch();
+  Batch online_moved = batch, prior_moved = batch;
+  online_moved.act.rightCols(kBatch / 2).array() += 0.5f;
+  prior_moved.act.leftCols(kBatch / 2).array() += 0.5f;
+  EXPECT_NEAR(bc_part("col-prior", online_moved), bc_part("col-prior", batch), 1e-6);
+  EXPECT_GT(std::abs(bc_part("col-prior", prior_moved) - bc_part("col-prior", batch)), 1e-3);
+  // λ · mean over the prior half of ‖π(s) − a‖².
+  const Mat pi = agent("col-prior")->actor().forward(batch.obs);
+  const double expected = (pi.leftCols(kBatch / 2) - batch.act.leftCols(kBatch / 2)).colwise().squaredNorm().mean();
+  EXPECT_NEAR(bc_part("col-prior", batch), expected, 1e-5);
+}
+
+TEST(ColAll, BcTermCoversTheWholeBatch) {
+  const Batch batch = hand_made_batch();
+  const Mat pi = agent("col-all")->actor().forward(batch.obs);
+  EXPECT_NEAR(bc_part("col-all", batch), (pi - batch.act).colwise().squaredNorm().mean(), 1e-5);
+  EXPECT_NEAR(bc_part("rlpd", batch), 0.0, 1e-7);
+}
+
+TEST(Registry, PriorUseAndUnknownNames) {
+  EXPECT_FALSE(algo_uses_prior("ddpg"));
+  for (const char* n : {"rlpd", "col-prior", "col-all", "rapid-rl"}) EXPECT_TRUE(algo_uses_prior(n)) << n;
+  try {
+    agent("sac");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown algorithm 'sac'"), std::string::npos);
+  }
+}
+
+TEST(CriticTarget, MasksTerminalsButBootstrapsThroughTimeouts) {
+  auto a = agent("ddpg");
+  Batch batch = hand_made_batch();
+  batch.not_terminal.setOnes();
+  batch.not_terminal[2] = 0.0f;  // a collision
+  batch.timeout[5] = 1.0f;       // a time-limit truncation: still bootstrapped
+  // At initialisation the target networks equal the online ones.
+  const Mat next_pi = a->actor().forward(batch.next_obs);
+  Mat sa(kObs + kAct, kBatch);
+  sa << batch.next_obs, next_pi;
+  const Mat next_q = a->critic().forward(sa);
+  const RowVec y = a->critic_targets(batch);
+  const float gamma = a->config().gamma;
+  EXPECT_FLOAT_EQ(y[2], batch.rew[2]);
+  EXPECT_NEAR(y[5], batch.rew[5] + gamma * next_q(0, 5), 1e-6);
+  EXPECT_NEAR(y[0], batch.rew[0] + gamma * next_q(0, 0), 1e-6);
+  EXPECT_NE(next_q(0, 5), 0.0f);
+}
+
+TEST(ActorCritic, UpdateReducesCriticLossOnAFixedBatch) {
+  AgentConfig config = small_config();
+  config.critic_lr = 1e-3f;
+  auto a = make_agent("rapid-rl", kObs, kAct, config, 17);
+  Batch batch = hand_made_batch();
+  batch.not_terminal.setZero();  // y = r: a plain regression the critic must fit
+  const float first = a->update(batch).critic_loss;
+  float last = first;
+  for (int i = 0; i < 1000; ++i) last = a->update(batch).critic_loss;
+  EXPECT_LT(last, 0.1f * first);
+  EXPECT_TRUE(a->parameters_finite());
+}
