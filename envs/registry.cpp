@@ -1,7 +1,10 @@
 // The name → environment table behind `--scenario`.
 #include <stdexcept>
 
+#include "envs/cut_in.hpp"
 #include "envs/env.hpp"
+#include "envs/lane_drop.hpp"
+#include "envs/merge.hpp"
 #include "envs/pendulum.hpp"
 
 namespace rapid {
@@ -11,11 +14,14 @@ void Env::set_builtin_driver(bool) {
 }
 
 const std::vector<std::string>& env_names() {
-  static const std::vector<std::string> names = {"pendulum"};
+  static const std::vector<std::string> names = {"lane-drop", "cut-in", "merge", "pendulum"};
   return names;
 }
 
 std::unique_ptr<Env> make_env(const std::string& name) {
+  if (name == "lane-drop") return std::make_unique<LaneDropEnv>();
+  if (name == "cut-in") return std::make_unique<CutInEnv>();
+  if (name == "merge") return std::make_unique<MergeEnv>();
   if (name == "pendulum") return std::make_unique<PendulumEnv>();
   std::string known;
   for (const auto& n : env_names()) known += (known.empty() ? "" : ", ") + n;

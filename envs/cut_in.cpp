@@ -1,0 +1,75 @@
+#include "envs/cut_in.hpp"
+
+#include <libsumo/libsumo.h>
+
+namespace rapid {
+
+namespace {
+using libsumo::Vehicle;
+
+DrivingConfig cut_in_config() {
+  DrivingConfig c;
+  c.scenario = "cut-in";
+  c.edges = {"road"};
+  c.ego_route = "main";
+  // ε = 0.6 = r_v at 15 m/s, about the obstacles' speed (10-16 m/s): being stuck behind an
+  // obstacle is at or below it, overtaking is above; a tailgating step or a failed lane change at
+  // cruising speed (≤ 0.7 after its penalty ≥ 0.3) drops below it too.
+  c.epsilon = 0.6f;
+  return c;
+}
+// Obstacle ids are "obs0" … "obs5": the digit is the index.
+constexpr const char* kObstacleIds[CutInEnv::kObstacles] = {"obs0", "obs1", "obs2", "obs3", "obs4", "obs5"};
+int obstacle_index(const std::string& id) {
+  return id.size() == 4 && id.compare(0, 3, "obs") == 0 ? id[3] - '0' : -1;
+}
+// Obstacles only change lane when told to, and then even into a tight gap (a real cut-in):
+// TraCI requests are refused only if they would overlap a vehicle.
+constexpr int kObstacleLaneChangeMode = 256;
+constexpr double kCutInDuration = 3.0;  // s the cut-in request stays active
+}  // namespace
+
+CutInEnv::CutInEnv() : DrivingEnv(cut_in_config()) {}
+
+void CutInEnv::populate(Rng& rng) {
+  // At time 0, before any human: spread ahead of where the ego will enter, in random lanes.
+  double pos = rng.uniform(60.0, 160.0);
+  const int lanes = road().edge("road").lanes;
+  for (int k = 0; k < kObstacles; ++k) {
+    speed_[k] = rng.uniform(10.0, 16.0);
+    cutter_[k] = rng.uniform() < 0.6;
+    trigger_gap_[k] = rng.uniform(8.0, 25.0);
+    cut_[k] = false;
+    const int lane = static_cast<int>(rng.index(lanes));
+    Vehicle::add(kObstacleIds[k], "main", "obstacle", "now", std::to_string(lane), std::to_string(pos),
+                 std::to_string(speed_[k]));
+    Vehicle::setMaxSpeed(kObstacleIds[k], speed_[k]);
+    Vehicle::setLaneChangeMode(kObstacleIds[k], kObstacleLaneChangeMode);
+    pos += rng.uniform(80.0, 180.0);
+  }
+  pending_ = -1;
+  completed_ = 0;
+}
+
+int CutInEnv::ego_depart_lane(Rng& rng) { return static_cast<int>(rng.index(road().edge("road").lanes)); }
+
+void CutInEnv::after_observe() {
+  const EgoState& e = ego();
+  if (pending_ >= 0) {
+    if (e.leader[1].present && obstacle_index(e.leader[1].id) == pending_) ++completed_;
+    pending_ = -1;
+  }
+  // A cutter the ego comes up on in the next lane pulls in front of it (left = 0, right = 2).
+  for (int side : {0, 2}) {
+    const Neighbor& n = e.leader[side];
+    if (!n.present) continue;
+    const int k = obstacle_index(n.id);
+    if (k < 0 || !cutter_[k] || cut_[k] || n.gap > trigger_gap_[k] || e.speed <= n.speed) continue;
+    Vehicle::changeLane(kObstacleIds[k], e.lane, kCutInDuration);
+    cut_[k] = true;
+    pending_ = k;
+    break;
+  }
+}
+
+}  // namespace rapid

@@ -1,0 +1,35 @@
+// cut-in (SPEC §4): slow obstacle vehicles drive at constant speeds well below the ego's desired
+// speed on a three-lane road among faster humans. Some obstacles are cutters: when the ego comes
+// up behind them in the next lane, they change into the ego's lane just ahead of it. The ego must
+// brake for the cut-ins and overtake the obstacles to reach its desired speed.
+#pragma once
+
+#include <array>
+
+#include "envs/driving_env.hpp"
+
+namespace rapid {
+
+class CutInEnv final : public DrivingEnv {
+ public:
+  static constexpr int kObstacles = 6;
+  CutInEnv();
+
+  // For tests: the obstacles' constant speeds and how many cut-ins ended with the obstacle as the
+  // ego's leader, this episode.
+  const std::array<double, kObstacles>& obstacle_speeds() const { return speed_; }
+  int completed_cut_ins() const { return completed_; }
+
+ protected:
+  void populate(Rng& rng) override;
+  int ego_depart_lane(Rng& rng) override;
+  void after_observe() override;
+
+ private:
+  std::array<double, kObstacles> speed_{}, trigger_gap_{};
+  std::array<bool, kObstacles> cutter_{}, cut_{};
+  int pending_ = -1;  // obstacle commanded to cut in during the last decision
+  int completed_ = 0;
+};
+
+}  // namespace rapid

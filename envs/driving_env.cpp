@@ -1,0 +1,232 @@
+#include "envs/driving_env.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <libsumo/libsumo.h>
+#include <stdexcept>
+
+namespace rapid {
+
+namespace {
+using libsumo::Simulation;
+using libsumo::Vehicle;
+
+// All vTypes share minGap 2.5 m; libsumo reports leader and follower distances minus it.
+constexpr double kMinGap = 2.5;
+// Lane-change mode of the agent's ego: no lane changes of its own (bits 0-7 zero); TraCI requests
+// are carried out unless they would overlap another vehicle (bits 8-9 = 1).
+constexpr int kAgentLaneChangeMode = 256;
+// Speed mode 0: the commanded speed is applied without SUMO's safe-speed, acceleration or
+// deceleration checks, so the agent can drive into the vehicle ahead.
+constexpr int kAgentSpeedMode = 0;
+// getNeighbors modes (bit 0 set: right, bit 1 set: leaders).
+constexpr int kLeftFollowers = 0, kRightFollowers = 1, kLeftLeaders = 2, kRightLeaders = 3;
+enum Side { kLeft = 0, kCurrent = 1, kRight = 2 };
+// Stop this far before the road's exit (an ego that reaches it leaves the simulation).
+constexpr double kRoadEndMargin = 50.0;
+
+float clip1(double x) { return static_cast<float>(std::clamp(x, -1.0, 1.0)); }
+}  // namespace
+
+DrivingEnv::DrivingEnv(DrivingConfig config) : config_(std::move(config)) {
+  // File names are resolved on reset, so a missing network is reported when it matters.
+  session_config_.step_length = config_.step_length;
+}
+
+void DrivingEnv::reset(std::uint64_t seed, VecRef obs) {
+  const std::string& s = config_.scenario;
+  session_config_.net_file = network_file(s, s + ".net.xml");
+  session_config_.route_files = {network_file(s, s + ".rou.xml")};
+  session_config_.additional_files = {network_file("", "vtypes.add.xml")};
+  session_config_.seed = seed;
+  session_.start(session_config_);
+  // The scenario's own draws (entry lane, obstacles, warm-up length) use a stream apart from
+  // SUMO's: same seed, same episode.
+  Rng rng(splitmix64(seed ^ 0x5ce7a410'0000'0000ULL));
+  try {
+    if (!road_read_) {
+      road_ = Road::from_simulation(config_.edges);
+      road_read_ = true;
+    }
+    populate(rng);
+    const int warmup = config_.warmup_steps + static_cast<int>(rng.index(config_.warmup_jitter + 1));
+    for (int i = 0; i < warmup; ++i) Simulation::step();
+    const int lane = ego_depart_lane(rng);
+    Vehicle::add(kEgo, config_.ego_route, "ego", "now", std::to_string(lane), "base", "max");
+    // The ego enters as soon as its lane's entry has room.
+    for (int i = 0; Vehicle::getRoadID(kEgo).empty(); ++i) {
+      if (i == 2000) throw std::runtime_error("the ego found no room to enter within 200 s");
+      Simulation::step();
+    }
+    if (!builtin_) {
+      Vehicle::setSpeedMode(kEgo, kAgentSpeedMode);
+      Vehicle::setLaneChangeMode(kEgo, kAgentLaneChangeMode);
+    }
+    t_ = 0;
+    since_lane_change_ = config_.lane_change_interval;
+    read_state();
+    after_observe();
+  } catch (...) {
+    rethrow_with_context("scenario '" + s + "': reset(" + std::to_string(seed) + ")");
+  }
+  episode_over_ = false;
+  observe(obs);
+}
+
+StepResult DrivingEnv::step(const ConstVecRef& action, VecRef obs) {
+  session_.require_active();
+  if (episode_over_) throw std::logic_error("scenario '" + config_.scenario + "': step() after the episode ended");
+  StepResult r;
+  try {
+    const Road::Edge& edge = road_.edge(ego_.edge);
+    const int lane_before = ego_.global_lane;
+    const double decision_time = config_.action_repeat * config_.step_length;
+    bool commanded = false, failed = false;
+    double accel = 0.0;
+    if (!builtin_) {
+      accel = std::clamp(static_cast<double>(action[0]), -1.0, 1.0) * config_.max_accel;
+      const int dir = action[1] > 1.0f / 3.0f ? 1 : (action[1] < -1.0f / 3.0f ? -1 : 0);
+      if (dir != 0) {
+        const int target = ego_.lane + dir;
+        if (target < 0 || target >= edge.lanes || since_lane_change_ < config_.lane_change_interval) {
+          failed = true;
+        } else {
+          // Expires within this decision, so a refused request does not linger into the next.
+          Vehicle::changeLane(kEgo, target, decision_time - 0.5 * config_.step_length);
+          commanded = true;
+        }
+      }
+    }
+    bool collision = false;
+    const double dt = config_.step_length;
+    for (int k = 1; k <= config_.action_repeat && !collision; ++k) {
+      // The commanded acceleration, exactly: one setSpeed per SUMO step (slowDown's ramp ends a
+      // step late). It holds until the next setSpeed, so the ego never falls back to SUMO's driver.
+      if (!builtin_) Vehicle::setSpeed(kEgo, std::clamp(ego_.speed + accel * dt * k, 0.0, config_.speed_norm));
+      Simulation::step();
+      collision = Simulation::getCollidingVehiclesNumber() > 0 && ego_collided();
+    }
+    read_state();
+    if (!collision && !builtin_ && ego_at_dead_end()) collision = true;
+    r.info.lane_changes = std::abs(ego_.global_lane - lane_before);
+    if (commanded && r.info.lane_changes == 0) failed = true;
+    since_lane_change_ = r.info.lane_changes > 0 ? 0 : since_lane_change_ + 1;
+    after_observe();
+    ++t_;
+    r.info.collision = collision;
+    r.info.ego_speed = ego_.speed;
+    r.info.lane_change_failed = failed;
+    r.reward = reward(collision, r.info.lane_changes > 0, failed);
+    r.terminated = collision;
+    const Road::Edge& now = road_.edge(ego_.edge);
+    const bool road_end = now.exit && ego_.pos > now.length - kRoadEndMargin;
+    r.truncated = !r.terminated && (t_ >= config_.horizon || road_end);
+  } catch (...) {
+    rethrow_with_context("scenario '" + config_.scenario + "': step " + std::to_string(t_));
+  }
+  episode_over_ = r.terminated || r.truncated;
+  observe(obs);
+  return r;
+}
+
+void DrivingEnv::read_state() {
+  ego_.speed = Vehicle::getSpeed(kEgo);
+  road_id_ = Vehicle::getRoadID(kEgo);
+  const int e = road_.find(road_id_);
+  if (e < 0) throw std::runtime_error("the ego left the road (on '" + road_id_ + "')");
+  ego_.edge = e;
+  ego_.lane = Vehicle::getLaneIndex(kEgo);
+  ego_.pos = Vehicle::getLanePosition(kEgo);
+  const Road::Edge& edge = road_.edge(e);
+  ego_.global_lane = ego_.lane + edge.lane_shift;
+  ego_.progress = edge.offset + ego_.pos;
+
+  const double range = config_.sensing_range;
+  auto fill = [&](Neighbor& n, const std::string& id, double dist) {
+    const double gap = std::max(0.0, dist + kMinGap);
+    n.present = !id.empty() && gap <= range;
+    if (!n.present) return;
+    n.id = id;
+    n.gap = gap;
+    n.speed = Vehicle::getSpeed(id);
+  };
+  const auto leader = Vehicle::getLeader(kEgo, range);
+  fill(ego_.leader[kCurrent], leader.first, leader.second);
+  const auto follower = Vehicle::getFollower(kEgo, range);
+  fill(ego_.follower[kCurrent], follower.first, follower.second);
+  auto nearest = [&](Neighbor& n, int mode) {
+    n.present = false;
+    const auto found = Vehicle::getNeighbors(kEgo, mode);
+    const std::pair<std::string, double>* best = nullptr;
+    for (const auto& p : found)
+      if (best == nullptr || p.second < best->second) best = &p;
+    if (best != nullptr) fill(n, best->first, best->second);
+  };
+  // getNeighbors must only be asked about lanes that exist.
+  if (ego_.lane + 1 < edge.lanes) {
+    nearest(ego_.leader[kLeft], kLeftLeaders);
+    nearest(ego_.follower[kLeft], kLeftFollowers);
+  } else {
+    ego_.leader[kLeft].present = ego_.follower[kLeft].present = false;
+  }
+  if (ego_.lane > 0) {
+    nearest(ego_.leader[kRight], kRightLeaders);
+    nearest(ego_.follower[kRight], kRightFollowers);
+  } else {
+    ego_.leader[kRight].present = ego_.follower[kRight].present = false;
+  }
+}
+
+bool DrivingEnv::ego_collided() const {
+  for (const auto& id : Simulation::getCollidingVehiclesIDList())
+    if (id == kEgo) return true;
+  return false;
+}
+
+bool DrivingEnv::ego_at_dead_end() const {
+  // SUMO stops a vehicle that runs out of lane dead at the lane's end; for the agent's ego (which
+  // SUMO does not brake) that is driving off the end of the lane: a crash.
+  const double end = road_.edge(ego_.edge).lane_end[ego_.lane];
+  return end != Road::kNoEnd && end - ego_.progress < 0.01;
+}
+
+float DrivingEnv::reward(bool collision, bool changed_lane, bool failed_change) const {
+  const auto& w = config_.weights;
+  if (collision) return static_cast<float>(-w.collision);
+  const double v = ego_.speed;
+  double r = driving::velocity_term(v, config_.desired_speed);
+  const Neighbor& lead = ego_.leader[kCurrent];
+  if (lead.present) r -= w.gap * idm_.shortfall(lead.gap, v, v - lead.speed);
+  const Neighbor& follow = ego_.follower[kCurrent];
+  if (changed_lane && follow.present) r -= w.gap * idm_.shortfall(follow.gap, follow.speed, follow.speed - v);
+  if (failed_change) r -= w.failed_lane_change;
+  return static_cast<float>(r);
+}
+
+void DrivingEnv::observe(VecRef obs) const {
+  const double range = config_.sensing_range, rel = config_.rel_speed_norm;
+  const double v = ego_.speed;
+  const Road::Edge& edge = road_.edge(ego_.edge);
+  obs[0] = clip1(2.0 * v / config_.speed_norm - 1.0);
+  obs[1] = since_lane_change_ >= config_.lane_change_interval ? 1.0f : -1.0f;
+  for (int side = kLeft; side <= kRight; ++side) {
+    float* o = obs.data() + 2 + 5 * side;
+    const Neighbor& lead = ego_.leader[side];
+    const Neighbor& follow = ego_.follower[side];
+    o[0] = lead.present ? clip1(lead.gap / range) : 1.0f;
+    o[1] = lead.present ? clip1((lead.speed - v) / rel) : 1.0f;
+    o[2] = follow.present ? clip1(-follow.gap / range) : -1.0f;
+    o[3] = follow.present ? clip1((follow.speed - v) / rel) : -1.0f;
+    const int lane = ego_.lane + (side == kLeft ? 1 : (side == kRight ? -1 : 0));
+    if (lane < 0 || lane >= edge.lanes) {
+      o[4] = -1.0f;
+    } else {
+      const double end = edge.lane_end[lane];
+      o[4] = end == Road::kNoEnd ? 1.0f
+                                 : clip1(2.0 * std::clamp((end - ego_.progress) / config_.lane_end_range, 0.0, 1.0) - 1.0);
+    }
+  }
+  write_features(obs.data() + kCommonObs);
+}
+
+}  // namespace rapid

@@ -1,0 +1,128 @@
+// The common part of the three SUMO driving scenarios (SPEC §4): one agent-controlled ego among
+// SUMO-driven humans. Scenarios derive from DrivingEnv and supply their network, where the ego
+// enters, what else to put on the road, and their own observation features.
+//
+// Decision: a = (a0, a1) ∈ [-1,1]², held for `action_repeat` SUMO steps of 0.1 s.
+//   a0·max_accel is the commanded acceleration, applied by a setSpeed before each SUMO step of the
+//   decision (speed clipped to [0, speed_norm]); speed mode 0 (no safety checks) lets the ego make
+//   mistakes.
+//   a1 < −1/3 → one lane right, a1 > 1/3 → one lane left, through changeLane with the ego's own
+//   lane changing off (lane-change mode 256: only TraCI requests, refused only if they would
+//   overlap a vehicle). A request into a missing lane, before `lane_change_interval` decisions have
+//   passed since the last change, or refused by SUMO is a failed lane change: penalised, no effect.
+// Observation (every entry in [-1, 1]; see kCommonObs and docs/scenarios.md):
+//   [0] ego speed 2v/v_norm − 1, [1] lane change allowed (+1) or still in its minimum interval (−1),
+//   then for the left, current and right lane (5 each): leader gap / R (missing +1), leader
+//   relative speed / 15 m/s (missing +1), −follower gap / R (missing −1), follower relative
+//   speed / 15 m/s (missing −1), lane continues ahead (−1 missing, 2·min(1, d_end / R_end) − 1);
+//   then the scenario's features.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/rng.hpp"
+#include "envs/driving_reward.hpp"
+#include "envs/env.hpp"
+#include "envs/road.hpp"
+#include "envs/sumo_session.hpp"
+
+namespace rapid {
+
+struct DrivingConfig {
+  std::string scenario;            // name; also the folder and file stem under network_dir()
+  std::vector<std::string> edges;  // the road's edges (first one anchors the progress coordinate)
+  std::string ego_route;           // route id (in the scenario's .rou.xml) the ego drives
+  double desired_speed = 25.0;     // v_des of the reward (m/s); the ego vType's speedFactor matches it
+  int horizon = 150;               // decisions per episode
+  int action_repeat = 5;           // SUMO steps per decision
+  double step_length = 0.1;        // s
+  int warmup_steps = 250;          // SUMO steps of traffic before the ego enters (+ up to warmup_jitter)
+  int warmup_jitter = 50;
+  double sensing_range = 100.0;    // R (m): vehicles farther away read as missing
+  double lane_end_range = 200.0;   // R_end (m) of the "lane continues ahead" entries
+  double speed_norm = 35.0;        // v_norm (m/s): also the ego's top speed under agent control
+  double rel_speed_norm = 15.0;    // m/s
+  double max_accel = 4.0;          // m/s² at |a0| = 1
+  int lane_change_interval = 4;    // decisions between two lane changes
+  float epsilon = 0.0f;            // the documented default ε
+  int extra_features = 0;          // scenario features appended to the observation
+  driving::RewardWeights weights;
+};
+
+class DrivingEnv : public Env {
+ public:
+  static constexpr int kCommonObs = 17;
+  static constexpr const char* kEgo = "ego";
+
+  explicit DrivingEnv(DrivingConfig config);
+
+  std::string name() const override { return config_.scenario; }
+  int obs_dim() const override { return kCommonObs + config_.extra_features; }
+  int act_dim() const override { return 2; }
+  int horizon() const override { return config_.horizon; }
+  float default_epsilon() const override { return config_.epsilon; }
+  void reset(std::uint64_t seed, VecRef obs) override;
+  StepResult step(const ConstVecRef& action, VecRef obs) override;
+  void set_builtin_driver(bool on) override { builtin_ = on; }
+
+  // What the env read from SUMO at the end of the last decision (also for tests).
+  struct Neighbor {
+    bool present = false;
+    std::string id;
+    double gap = 0.0;    // bumper to bumper, m
+    double speed = 0.0;  // m/s
+  };
+  struct EgoState {
+    int edge = -1;  // index into road()
+    int lane = 0;   // lane index on that edge
+    int global_lane = 0;
+    double pos = 0.0, progress = 0.0, speed = 0.0;
+    Neighbor leader[3], follower[3];  // left, current, right lane
+  };
+  const EgoState& ego() const { return ego_; }
+  const Road& road() const { return road_; }
+  // Id of the edge the ego is on ("" before the first reset).
+  const std::string& ego_edge() const {
+    static const std::string none;
+    return ego_.edge < 0 ? none : road_.edge(ego_.edge).id;
+  }
+  const DrivingConfig& config() const { return config_; }
+
+ protected:
+  // Puts scenario vehicles on the road before the warm-up (simulation time 0).
+  virtual void populate(Rng&) {}
+  // Lane index on the first edge of the ego's route where the ego enters.
+  virtual int ego_depart_lane(Rng& rng) = 0;
+  // Called once per decision after the state is read (e.g. scripted manoeuvres of others).
+  virtual void after_observe() {}
+  // Writes config().extra_features values in [-1, 1].
+  virtual void write_features(float*) const {}
+
+  bool builtin_driver() const { return builtin_; }
+  // Distance along the road from the ego to `progress` (negative once passed).
+  double distance_to(double progress) const { return progress - ego_.progress; }
+
+ private:
+  void read_state();
+  void read_neighbors(int side, int mode_leaders, int mode_followers);
+  bool ego_collided() const;
+  bool ego_at_dead_end() const;
+  float reward(bool collision, bool changed_lane, bool failed_change) const;
+  void observe(VecRef obs) const;
+
+  DrivingConfig config_;
+  SessionConfig session_config_;
+  SumoSession session_;
+  Road road_;
+  bool road_read_ = false;
+  bool builtin_ = false;
+  EgoState ego_;
+  std::string road_id_;  // reused buffer for getRoadID
+  int t_ = 0;
+  int since_lane_change_ = 0;
+  bool episode_over_ = true;
+  driving::IdmGap idm_;
+};
+
+}  // namespace rapid

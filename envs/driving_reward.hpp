@@ -1,0 +1,43 @@
+// The per-decision reward of the driving scenarios (SPEC §4), SUMO-free so it can be tested and
+// documented on its own (docs/scenarios.md).
+//
+//   r = r_v − w_gap·h(leader) − [ego changed lane] w_gap·h(new follower) − w_fail·[failed LC]
+//   r = −collision_penalty on a collision (the episode then terminates)
+//
+// r_v = max(0, 1 − |v − v_des| / v_des) ∈ [0, 1] (FLOW's desired-velocity term) and
+// h = clamp(1 − gap / s*, 0, 1), with the IDM desired gap s* = s0 + max(0, v·T + v·Δv / (2√(a·b)))
+// of the vehicle behind (Δv its closing speed). A good step earns up to 1; a step spent at
+// standstill earns 0; tailgating, cutting somebody off or commanding impossible lane changes push
+// it below 0; a collision costs as much as ten perfect steps and forfeits the rest of the episode.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+namespace rapid::driving {
+
+struct RewardWeights {
+  double gap = 1.0;                 // w_gap: unsafe headway, per unit of (1 − gap/s*)
+  double failed_lane_change = 0.3;  // w_fail
+  double collision = 10.0;          // collision_penalty
+};
+
+// IDM constants of the humans' vType (envs/networks/vtypes.add.xml), except s0 = 2 m < minGap so
+// that humans in their own steady state are never penalised.
+struct IdmGap {
+  double s0 = 2.0, T = 1.0, a = 2.6, b = 4.5;
+  // s* for a follower at speed v closing in at dv = v − v_leader.
+  double desired_gap(double v, double dv) const {
+    return s0 + std::max(0.0, v * T + v * dv / (2.0 * std::sqrt(a * b)));
+  }
+  // h ∈ [0, 1]: 0 at or beyond s*, 1 at contact.
+  double shortfall(double gap, double v, double dv) const {
+    return std::clamp(1.0 - gap / desired_gap(v, dv), 0.0, 1.0);
+  }
+};
+
+inline double velocity_term(double v, double v_des) {
+  return std::max(0.0, 1.0 - std::abs(v - v_des) / v_des);
+}
+
+}  // namespace rapid::driving

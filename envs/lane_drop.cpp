@@ -1,0 +1,34 @@
+#include "envs/lane_drop.hpp"
+
+#include <algorithm>
+
+namespace rapid {
+
+namespace {
+DrivingConfig lane_drop_config() {
+  DrivingConfig c;
+  c.scenario = "lane-drop";
+  c.edges = {"in", "out"};
+  c.ego_route = "main";
+  c.extra_features = 1;
+  // ε = 0.4 = r_v at 10 m/s, the congested lane's speed: keeping up with the queue without a
+  // penalty is above it; crawling, tailgating or a failed lane change at queue speed is below.
+  c.epsilon = 0.4f;
+  return c;
+}
+constexpr double kFeatureRange = 600.0;
+}  // namespace
+
+LaneDropEnv::LaneDropEnv() : DrivingEnv(lane_drop_config()) {}
+
+int LaneDropEnv::ego_depart_lane(Rng& rng) {
+  drop_progress_ = road().edge("out").offset;
+  return static_cast<int>(rng.index(road().edge("in").lanes));
+}
+
+void LaneDropEnv::write_features(float* out) const {
+  const double d = distance_to(drop_progress_);
+  out[0] = d <= 0.0 ? 1.0f : static_cast<float>(2.0 * std::min(1.0, d / kFeatureRange) - 1.0);
+}
+
+}  // namespace rapid

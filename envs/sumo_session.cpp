@@ -1,0 +1,113 @@
+#include "envs/sumo_session.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <libsumo/libsumo.h>
+#include <stdexcept>
+
+#ifndef RAPID_NETWORK_DIR
+#define RAPID_NETWORK_DIR "networks"
+#endif
+
+namespace rapid {
+
+namespace {
+// The session that owns libsumo's single simulation, if any.
+const SumoSession* g_owner = nullptr;
+}  // namespace
+
+std::string network_dir() {
+  if (const char* dir = std::getenv("RAPID_NETWORK_DIR"); dir != nullptr && *dir != '\0') return dir;
+  return RAPID_NETWORK_DIR;
+}
+
+std::string network_file(const std::string& scenario, const std::string& file) {
+  const std::filesystem::path path = std::filesystem::path(network_dir()) / scenario / file;
+  if (!std::filesystem::exists(path))
+    throw std::runtime_error("SUMO network file '" + path.string() +
+                             "' not found: build the 'rapid_networks' target or set RAPID_NETWORK_DIR");
+  return path.string();
+}
+
+void rethrow_with_context(const std::string& context) {
+  try {
+    throw;
+  } catch (const libsumo::TraCIException& e) {
+    throw std::runtime_error(context + ": SUMO: " + e.what());
+  } catch (const std::exception& e) {
+    throw std::runtime_error(context + ": " + e.what());
+  }
+}
+
+std::vector<std::string> SumoSession::command_line(const SessionConfig& c) {
+  auto join = [](const std::vector<std::string>& files) {
+    std::string s;
+    for (const auto& f : files) s += (s.empty() ? "" : ",") + f;
+    return s;
+  };
+  std::vector<std::string> cmd = {
+      "sumo", "--net-file", c.net_file, "--seed", std::to_string(c.seed % 2147483647ULL),
+      "--step-length", std::to_string(c.step_length),
+      // Quiet and fast start-up.
+      "--no-step-log", "true", "--no-warnings", "true", "--duration-log.disable", "true",
+      "--xml-validation", "never",
+      // A collision is physical contact (not a gap below minGap); vehicles are kept so the ego
+      // can still be observed in the terminal step, and the env ends the episode.
+      "--collision.action", "warn", "--collision.mingap-factor", "0", "--collision.check-junctions", "true",
+      // Jams are part of the scenarios: never teleport a waiting vehicle away.
+      "--time-to-teleport", "-1",
+      // Try every waiting vehicle each step, so one blocked lane's entry does not hold back the
+      // inflow of the others.
+      "--eager-insert", "true",
+      // Speeds come from the vTypes' speedFactor distributions, not from a hidden default.
+      "--default.speeddev", "0"};
+  if (!c.route_files.empty()) cmd.insert(cmd.end(), {"--route-files", join(c.route_files)});
+  if (!c.additional_files.empty()) cmd.insert(cmd.end(), {"--additional-files", join(c.additional_files)});
+  return cmd;
+}
+
+void SumoSession::start(const SessionConfig& config) {
+  // netconvert and SUMO look their data files up under SUMO_HOME (Debian: /usr/share/sumo).
+  setenv("SUMO_HOME", "/usr/share/sumo", /*overwrite=*/0);
+  if (!std::filesystem::exists(config.net_file))
+    throw std::runtime_error("SUMO network file '" + config.net_file + "' not found");
+  if (g_owner != nullptr) {
+    // libsumo has one simulation per process; take it over explicitly.
+    try {
+      libsumo::Simulation::close();
+    } catch (...) {
+    }
+    const_cast<SumoSession*>(g_owner)->started_ = false;
+    g_owner = nullptr;
+  }
+  try {
+    libsumo::Simulation::start(command_line(config));
+  } catch (...) {
+    rethrow_with_context("starting SUMO on '" + config.net_file + "'");
+  }
+  started_ = true;
+  g_owner = this;
+}
+
+void SumoSession::close() {
+  if (!active()) return;
+  try {
+    libsumo::Simulation::close();
+  } catch (...) {
+  }
+  started_ = false;
+  g_owner = nullptr;
+}
+
+bool SumoSession::active() const { return started_ && g_owner == this; }
+
+void SumoSession::require_active() const {
+  if (!active())
+    throw std::runtime_error(
+        "this environment has no running SUMO simulation (libsumo runs one simulation per process and another "
+        "environment started its own, or reset() was not called): call reset() first");
+}
+
+SumoSession::~SumoSession() { close(); }
+
+}  // namespace rapid

@@ -1,0 +1,56 @@
+// The one libsumo simulation of this process. libsumo keeps a single global simulation and is not
+// thread-safe: a second Simulation::start silently replaces the running one. SumoSession makes
+// that explicit: starting a session closes whichever other session owned the simulation, and that
+// session then fails with a clear message instead of silently reading someone else's traffic.
+//
+// Everything that can go wrong (SUMO missing, a network not built, libsumo throwing) surfaces as
+// one std::runtime_error line naming what was being done.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rapid {
+
+// Where the built networks of the scenarios live: $RAPID_NETWORK_DIR if set, else the build's
+// networks/ folder (compiled in).
+std::string network_dir();
+// `<network_dir>/<scenario>/<file>`; throws std::runtime_error naming the path when it is missing.
+std::string network_file(const std::string& scenario, const std::string& file);
+
+struct SessionConfig {
+  std::string net_file;
+  std::vector<std::string> route_files;       // routes and flows
+  std::vector<std::string> additional_files;  // vehicle types
+  std::uint64_t seed = 0;
+  double step_length = 0.1;
+};
+
+class SumoSession {
+ public:
+  SumoSession() = default;
+  ~SumoSession();
+  SumoSession(const SumoSession&) = delete;
+  SumoSession& operator=(const SumoSession&) = delete;
+
+  // Starts a fresh simulation (closing this session's or another session's running one).
+  void start(const SessionConfig& config);
+  void close();
+  // True while this session owns the process's running simulation.
+  bool active() const;
+  // Throws a clear error unless active(): call before touching libsumo.
+  void require_active() const;
+
+  // The SUMO command line `start` would use (for logs and tests).
+  static std::vector<std::string> command_line(const SessionConfig& config);
+
+ private:
+  bool started_ = false;
+};
+
+// Rethrows the exception in flight (libsumo::TraCIException or any std::exception) as a
+// std::runtime_error "<context>: <message>". Use inside a catch (...) block.
+[[noreturn]] void rethrow_with_context(const std::string& context);
+
+}  // namespace rapid

@@ -1,0 +1,87 @@
+// What makes each scenario the scenario of SPEC §4.
+#include <gtest/gtest.h>
+
+#include <libsumo/libsumo.h>
+
+#include "envs/cut_in.hpp"
+#include "tests/envs/driving_test_util.hpp"
+
+namespace rapid {
+namespace {
+
+TEST(Merge, EgoAlwaysStartsOnTheOnRamp) {
+  auto env = test::make_driving("merge");
+  Vec obs(env->obs_dim());
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    env->reset(seed, obs);
+    EXPECT_EQ(env->ego_edge(), "ramp");
+    EXPECT_LT(obs[DrivingEnv::kCommonObs], 1.0f);  // distance to the acceleration lane's end
+  }
+  // The acceleration lane ends; the main road's lanes run on.
+  const Road::Edge& acc = env->road().edge("acc");
+  EXPECT_EQ(acc.lanes, 3);
+  EXPECT_NE(acc.lane_end[0], Road::kNoEnd);
+  EXPECT_EQ(acc.lane_end[1], Road::kNoEnd);
+  EXPECT_EQ(acc.lane_end[2], Road::kNoEnd);
+}
+
+TEST(Merge, SumoDriverMergesBeforeTheLaneEnds) {
+  auto env = test::make_driving("merge");
+  env->set_builtin_driver(true);
+  Vec obs(env->obs_dim()), action = Vec::Zero(2);
+  env->reset(4, obs);
+  for (int t = 0; t < 60; ++t) ASSERT_FALSE(env->step(action, obs).terminated);
+  EXPECT_GT(env->ego().global_lane, 0);
+  EXPECT_EQ(obs[DrivingEnv::kCommonObs], 1.0f);
+}
+
+TEST(LaneDrop, DownstreamSectionHasFewerLanes) {
+  auto env = test::make_driving("lane-drop");
+  Vec obs(env->obs_dim());
+  env->reset(1, obs);
+  const Road::Edge& in = env->road().edge("in");
+  const Road::Edge& out = env->road().edge("out");
+  EXPECT_EQ(in.lanes, 3);
+  EXPECT_EQ(out.lanes, 2);
+  EXPECT_DOUBLE_EQ(in.lane_end[0], out.offset);  // the rightmost lane ends at the drop
+  EXPECT_EQ(in.lane_end[1], Road::kNoEnd);
+}
+
+TEST(LaneDrop, TrafficIsCongested) {
+  // The inflow exceeds what two lanes carry: the humans ahead of the ego are well below the
+  // ego's desired speed on average.
+  auto env = test::make_driving("lane-drop");
+  env->set_builtin_driver(true);
+  Vec obs(env->obs_dim()), action = Vec::Zero(2);
+  env->reset(2, obs);
+  for (int t = 0; t < 80; ++t) env->step(action, obs);
+  double sum = 0.0;
+  int n = 0;
+  for (const auto& id : libsumo::Edge::getLastStepVehicleIDs("in")) sum += libsumo::Vehicle::getSpeed(id), ++n;
+  ASSERT_GT(n, 30);
+  EXPECT_LT(sum / n, 0.8 * env->config().desired_speed);
+}
+
+TEST(CutIn, ObstaclesAreSlowerThanTheDesiredSpeedAndCutIn) {
+  auto env = std::make_unique<CutInEnv>();
+  env->set_builtin_driver(true);
+  Vec obs(env->obs_dim()), action = Vec::Zero(2);
+  int cut_ins = 0;
+  for (std::uint64_t seed = 1; seed <= 4 && cut_ins == 0; ++seed) {
+    env->reset(seed, obs);
+    for (double v : env->obstacle_speeds()) EXPECT_LT(v, env->config().desired_speed - 5.0);
+    for (bool done = false; !done;) {
+      const StepResult r = env->step(action, obs);
+      done = r.terminated || r.truncated;
+      for (int k = 0; k < CutInEnv::kObstacles; ++k) {
+        const std::string id = "obs" + std::to_string(k);
+        EXPECT_LE(libsumo::Vehicle::getSpeed(id), env->obstacle_speeds()[k] + 1e-6);
+      }
+    }
+    cut_ins += env->completed_cut_ins();
+  }
+  EXPECT_GT(cut_ins, 0) << "no obstacle cut into the ego's lane";
+}
+
+}  // namespace
+}  // namespace rapid
