@@ -8,6 +8,7 @@
 #include "core/mlp.hpp"
 #include "core/rng.hpp"
 #include "envs/env.hpp"
+#include "experiments/cli_checks.hpp"
 #include "experiments/cli_errors.hpp"
 #include "experiments/commands.hpp"
 
@@ -103,7 +104,8 @@ Command add_rollout_command(CLI::App& parent) {
   sub->add_option("--policy", opts->policy, "random, zero, sumo (SUMO's own driver) or an actor checkpoint")
       ->required();
   sub->add_option("--episodes", opts->episodes, "number of episodes")->check(CLI::PositiveNumber);
-  sub->add_option("--seed", opts->seed, "seed of the episodes' traffic and of the random policy");
+  sub->add_option("--seed", opts->seed, "seed of the episodes' traffic and of the random policy")
+      ->check(seed_validator());
   sub->add_flag("--json", opts->json, "print one JSON object instead of one line per episode");
   return {sub, [opts] { return run_rollout(*opts); }};
 }

@@ -4,6 +4,7 @@
 
 #include "algos/registry.hpp"
 #include "envs/env.hpp"
+#include "experiments/cli_checks.hpp"
 #include "experiments/cli_errors.hpp"
 #include "experiments/commands.hpp"
 #include "experiments/job.hpp"
@@ -20,11 +21,9 @@ struct RunOptions {
   std::vector<long> checkpoint_at;
 };
 
-const std::vector<std::string> kDatasetNames = {"initial", "medium", "final", "final+medium"};
-
 // A named dataset lives at DIR/<scenario>/<name>.h5; anything else is taken as a path.
 std::string resolve_dataset_path(const RunOptions& o) {
-  for (const auto& name : kDatasetNames)
+  for (const auto& name : dataset_names())
     if (o.dataset == name) return o.dataset_dir + "/" + o.scenario + "/" + name + ".h5";
   return o.dataset;
 }
@@ -90,7 +89,9 @@ Command add_run_command(CLI::App& parent) {
   sub->add_option("--algo", o->algo, "rapid-rl, rlpd, col-prior, col-all or ddpg")->required();
   sub->add_option("--dataset", o->dataset, "initial, medium, final, final+medium or a D4RL-layout HDF5 path");
   sub->add_option("--dataset-dir", o->dataset_dir, "where named datasets live (DIR/<scenario>/<name>.h5)");
-  sub->add_option("--seed", o->seed, "run seed (network init, exploration, sampling, traffic)")->required();
+  sub->add_option("--seed", o->seed, "run seed (network init, exploration, sampling, traffic)")
+      ->required()
+      ->check(seed_validator());
   sub->add_option("--grid", o->grid, "grid file whose config overrides apply");
   sub->add_option("--set", o->sets, "override a config key: --set key=value (repeatable)");
   sub->add_option("--out", o->out, "job folder for record.json, actor.ckpt and progress.json")->required();

@@ -15,6 +15,11 @@ namespace rapid {
 
 namespace fs = std::filesystem;
 
+const std::vector<std::string>& dataset_names() {
+  static const std::vector<std::string> names = {"initial", "medium", "final", "final+medium"};
+  return names;
+}
+
 std::string job_config_hash(const JobSpec& spec) {
   nlohmann::json key = {{"scenario", spec.scenario}, {"algo", spec.algo}, {"seed", spec.seed},
                         {"config", spec.config}, {"dataset", nullptr}};
@@ -93,6 +98,11 @@ int run_job(const JobSpec& spec) {
     if (needs_prior) {
       const Dataset data =
           read_dataset(spec.dataset_path, {env->obs_dim(), env->act_dim(), spec.scenario});
+      // Every environment's action box is [-1, 1]; data outside it came from another task.
+      const float max_abs = data.actions.cwiseAbs().maxCoeff();
+      if (max_abs > 1.0f)
+        throw std::runtime_error("dataset " + spec.dataset_path + ": actions must lie in [-1, 1], found |a| = " +
+                                 std::to_string(max_abs));
       prior = make_prior_buffer(data);
       record["dataset_file"] = spec.dataset_path;
     }
@@ -106,7 +116,7 @@ int run_job(const JobSpec& spec) {
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       write_progress(spec.out_dir, step, config.steps, s > 0 ? l.env_steps / s : 0.0);
     };
-    log = train(*env, *agent, needs_prior ? &prior : nullptr, config, spec.seed, hooks);
+    train(*env, *agent, needs_prior ? &prior : nullptr, config, spec.seed, log, hooks);
     agent->actor().save(spec.out_dir + "/actor.ckpt");
     record["status"] = "ok";
   } catch (const DivergedError& e) {

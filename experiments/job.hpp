@@ -10,6 +10,9 @@ namespace rapid {
 
 inline constexpr const char* kRunRecordSchema = "rapid.run/1";
 
+// The dataset names a cell may use besides a path (SPEC §3), in the table's order.
+const std::vector<std::string>& dataset_names();
+
 struct JobSpec {
   std::string scenario;
   std::string algo;

@@ -76,8 +76,8 @@ std::pair<double, double> final_performance(const TrainLog& log, int last_k) {
   return {mean_of(last), std_of(last)};
 }
 
-TrainLog train(Env& env, ActorCritic& agent, const ReplayBuffer* prior, const RunConfig& config,
-               std::uint64_t run_seed, const TrainHooks& hooks) {
+void train(Env& env, ActorCritic& agent, const ReplayBuffer* prior, const RunConfig& config,
+           std::uint64_t run_seed, TrainLog& log, const TrainHooks& hooks) {
   const int obs_dim = env.obs_dim(), act_dim = env.act_dim();
   if (agent.uses_prior() && (prior == nullptr || prior->empty()))
     throw std::invalid_argument("algorithm '" + agent.name() + "' needs a prior dataset");
@@ -89,7 +89,7 @@ TrainLog train(Env& env, ActorCritic& agent, const ReplayBuffer* prior, const Ru
   Rng sample_rng(stream_seed(run_seed, Stream::kSampling));
   Vec obs(obs_dim), next_obs(obs_dim), action(act_dim);
 
-  TrainLog log;
+  log = {};
   LossWindow window;
   const auto t_start = Clock::now();
   auto last_progress = t_start;
@@ -169,7 +169,6 @@ TrainLog train(Env& env, ActorCritic& agent, const ReplayBuffer* prior, const Ru
       last_progress = Clock::now();
     }
   }
-  return log;
 }
 
 }  // namespace rapid

@@ -59,8 +59,10 @@ struct EvalResult {
 EvalResult evaluate(Env& env, ActorCritic& agent, int episodes);
 
 // Trains `agent` online for config.steps decisions; `prior` (may be null) is the prior buffer.
-TrainLog train(Env& env, ActorCritic& agent, const ReplayBuffer* prior, const RunConfig& config,
-               std::uint64_t run_seed, const TrainHooks& hooks = {});
+// Fills `log` as it goes, so a run that throws (DivergedError, a simulator error) keeps the
+// curves it had measured.
+void train(Env& env, ActorCritic& agent, const ReplayBuffer* prior, const RunConfig& config,
+           std::uint64_t run_seed, TrainLog& log, const TrainHooks& hooks = {});
 
 // Final performance: the mean and std of the last K evaluations' mean returns.
 std::pair<double, double> final_performance(const TrainLog& log, int last_k);

@@ -10,11 +10,9 @@
 
 #include "core/dataset_io.hpp"
 #include "core/dataset_stats.hpp"
+#include "tests/cli_runner.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
 
-#ifndef RAPID_BIN
-#error "RAPID_BIN must name the built rapid binary"
-#endif
 
 namespace rapid {
 namespace {
@@ -22,23 +20,7 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-struct Output {
-  int exit_code = -1;
-  std::string text;
-};
-
-// Runs `rapid ARGS`; stderr is folded into the text when `with_stderr` is set.
-Output rapid_cli(const std::string& args, bool with_stderr = false) {
-  const std::string command = std::string(RAPID_BIN) + " " + args + (with_stderr ? " 2>&1" : " 2>/dev/null");
-  Output out;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (!pipe) return out;
-  char buf[4096];
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, pipe)) > 0;) out.text.append(buf, n);
-  const int status = ::pclose(pipe);
-  out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return out;
-}
+using test::rapid_cli;
 
 class DatasetInfoCli : public ::testing::Test {
  protected:
@@ -52,7 +34,7 @@ class DatasetInfoCli : public ::testing::Test {
 };
 
 TEST_F(DatasetInfoCli, JsonHasTheSpecKeys) {
-  const Output out = rapid_cli("dataset info --json " + dir_.file("d.h5"));
+  const test::CliOutput out = rapid_cli("dataset info --json " + dir_.file("d.h5"));
   ASSERT_EQ(out.exit_code, 0) << out.text;
   const nlohmann::json j = nlohmann::json::parse(out.text);
   for (const char* key : {"transitions", "episodes", "return_mean", "return_std", "reward_mean", "reward_std",
@@ -71,7 +53,7 @@ TEST_F(DatasetInfoCli, JsonHasTheSpecKeys) {
 }
 
 TEST_F(DatasetInfoCli, BinsAndSharedRange) {
-  const Output out = rapid_cli("dataset info --json --bins 3 --range -3 3 " + dir_.file("d.h5"));
+  const test::CliOutput out = rapid_cli("dataset info --json --bins 3 --range -3 3 " + dir_.file("d.h5"));
   ASSERT_EQ(out.exit_code, 0) << out.text;
   const nlohmann::json j = nlohmann::json::parse(out.text);
   EXPECT_EQ(j["reward_histogram"]["edges"], (std::vector<double>{-3, -1, 1, 3}));
@@ -79,7 +61,7 @@ TEST_F(DatasetInfoCli, BinsAndSharedRange) {
 }
 
 TEST_F(DatasetInfoCli, HumanReadableSummary) {
-  const Output out = rapid_cli("dataset info " + dir_.file("d.h5"));
+  const test::CliOutput out = rapid_cli("dataset info " + dir_.file("d.h5"));
   ASSERT_EQ(out.exit_code, 0) << out.text;
   EXPECT_THAT(out.text, HasSubstr("transitions 75, episodes 3"));
   EXPECT_THAT(out.text, HasSubstr("reward histogram (40 bins)"));
@@ -89,7 +71,7 @@ TEST_F(DatasetInfoCli, HumanReadableSummary) {
 TEST_F(DatasetInfoCli, BadFilesExitTwoWithOneLine) {
   std::filesystem::resize_file(dir_.file("d.h5"), std::filesystem::file_size(dir_.file("d.h5")) / 2);
   for (const std::string& file : {dir_.file("missing.h5"), dir_.file("d.h5")}) {
-    const Output out = rapid_cli("dataset info " + file, /*with_stderr=*/true);
+    const test::CliOutput out = rapid_cli("dataset info " + file, /*with_stderr=*/true);
     EXPECT_EQ(out.exit_code, 2) << out.text;
     EXPECT_THAT(out.text, StartsWith("rapid: error: dataset " + file + ": "));
     EXPECT_EQ(out.text.find('\n'), out.text.size() - 1) << "one line: " << out.text;

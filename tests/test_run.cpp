@@ -1,0 +1,144 @@
+// `rapid run` as a user runs it: records, determinism, divergence and bad input.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.hpp"
+#include "core/dataset.hpp"
+#include "core/dataset_io.hpp"
+#include "envs/pendulum.hpp"
+#include "tests/cli_runner.hpp"
+#include "tests/datasets/dataset_fixtures.hpp"
+
+using namespace rapid;
+using test::rapid_cli;
+
+namespace {
+
+// A short pendulum job: about a second.
+const std::string kShort =
+    "--scenario pendulum --set steps=1200 --set warmup_steps=200 --set eval_every=400 --set eval_episodes=2 "
+    "--set bc_log_every=200 --set batch_size=32 ";
+
+// A pendulum dataset of uniform-random actions, as a behaviour policy would leave it.
+Dataset random_pendulum_dataset(int transitions) {
+  PendulumEnv env;
+  DatasetBuilder builder(env.obs_dim(), env.act_dim());
+  Rng rng(9);
+  Vec obs(3), next(3), a(1);
+  env.reset(1, obs);
+  for (int t = 0; t < transitions; ++t) {
+    a[0] = static_cast<float>(rng.uniform(-1, 1));
+    const StepResult r = env.step(a, next);
+    builder.add(obs, a, r.reward, next, r.terminated, r.truncated);
+    obs = next;
+    if (r.truncated) env.reset(t, obs);
+  }
+  return builder.finish();
+}
+
+nlohmann::json read_record(const std::string& dir) { return nlohmann::json::parse(read_file(dir + "/record.json")); }
+
+// Everything but what legitimately differs between two runs of one job: times and host.
+nlohmann::json comparable(nlohmann::json r) {
+  r.erase("timing");
+  r.erase("provenance");
+  return r;
+}
+
+}  // namespace
+
+TEST(RapidRun, WritesACompleteRecord) {
+  rapid::testing::ScratchDir dir;
+  const auto out = rapid_cli("run " + kShort + "--algo ddpg --seed 3 --out " + dir.file("job"));
+  ASSERT_EQ(out.exit_code, 0) << out.text;
+  const auto r = read_record(dir.file("job"));
+  EXPECT_EQ(r["schema"], "rapid.run/1");
+  EXPECT_EQ(r["status"], "ok");
+  EXPECT_TRUE(r["error"].is_null());
+  EXPECT_EQ(r["cell"], nlohmann::json({{"scenario", "pendulum"}, {"dataset", nullptr}, {"algo", "ddpg"}, {"seed", 3}}));
+  EXPECT_EQ(r["config"]["steps"], 1200);
+  EXPECT_EQ(r["config_hash"].get<std::string>().size(), 16u);
+  for (const char* k : {"code_revision", "code_dirty", "sumo_version", "compiler", "host", "start_time", "end_time"})
+    EXPECT_TRUE(r["provenance"].contains(k)) << k;
+  // Evaluations at step 0, near each multiple of eval_every, and at the end.
+  ASSERT_GE(r["eval"].size(), 4u);
+  EXPECT_EQ(r["eval"].front()["step"], 0);
+  EXPECT_EQ(r["eval"].back()["target_step"], 1200);
+  EXPECT_FALSE(r["train_episodes"].empty());
+  EXPECT_EQ(r["train_episodes"][0]["length"], 200);
+  // Without a prior buffer the prior BC loss is null, the online one measured.
+  ASSERT_FALSE(r["bc_loss"].empty());
+  EXPECT_TRUE(r["bc_loss"][0]["prior"].is_null());
+  EXPECT_TRUE(r["bc_loss"][0]["online"].is_number());
+  EXPECT_EQ(r["final"]["last_k"], 3);
+  EXPECT_GT(r["timing"]["env_steps_per_s"].get<double>(), 0);
+  EXPECT_TRUE(std::filesystem::exists(dir.file("job/actor.ckpt")));
+}
+
+TEST(RapidRun, SameSeedGivesTheSameRecord) {
+  rapid::testing::ScratchDir dir;
+  for (const char* job : {"a", "b"})
+    ASSERT_EQ(rapid_cli("run " + kShort + "--algo ddpg --seed 5 --out " + dir.file(job)).exit_code, 0);
+  EXPECT_EQ(comparable(read_record(dir.file("a"))), comparable(read_record(dir.file("b"))));
+  ASSERT_EQ(rapid_cli("run " + kShort + "--algo ddpg --seed 6 --out " + dir.file("c")).exit_code, 0);
+  EXPECT_NE(read_record(dir.file("a"))["eval"], read_record(dir.file("c"))["eval"]);
+}
+
+TEST(RapidRun, PriorAlgorithmReadsADatasetAndLogsBothBcLosses) {
+  rapid::testing::ScratchDir dir;
+  write_dataset(dir.file("prior.h5"), random_pendulum_dataset(600));
+  const auto out = rapid_cli("run " + kShort + "--algo rapid-rl --dataset " + dir.file("prior.h5") +
+                             " --seed 1 --out " + dir.file("job"), /*with_stderr=*/true);
+  ASSERT_EQ(out.exit_code, 0) << out.text;
+  const auto r = read_record(dir.file("job"));
+  EXPECT_EQ(r["cell"]["dataset"], dir.file("prior.h5"));
+  EXPECT_TRUE(r["bc_loss"][0]["prior"].is_number());
+  EXPECT_TRUE(r["bc_loss"][0]["online"].is_number());
+}
+
+TEST(RapidRun, DivergenceIsRecordedNotCrashed) {
+  rapid::testing::ScratchDir dir;
+  const auto out = rapid_cli("run " + kShort + "--algo ddpg --seed 0 --set critic_lr=1e30 --set actor_lr=1e30 --out " +
+                             dir.file("job"));
+  EXPECT_EQ(out.exit_code, 1);
+  const auto r = read_record(dir.file("job"));
+  EXPECT_EQ(r["status"], "diverged");
+  EXPECT_NE(r["error"].get<std::string>().find("diverged at step"), std::string::npos);
+  EXPECT_FALSE(r["eval"].empty()) << "curves measured before the divergence are kept";
+}
+
+TEST(RapidRun, BadInputExitsTwoWithOneLineAndWritesNothing) {
+  rapid::testing::ScratchDir dir;
+  write_dataset(dir.file("wrong_dims.h5"), rapid::testing::make_dataset(5, 2, {50}));
+  const std::string out = " --out " + dir.file("job");
+  const std::pair<std::string, std::string> cases[] = {
+      {"run --scenario pendulum --algo sac --seed 0" + out, "--algo: unknown algorithm 'sac'"},
+      {"run --scenario highway --algo ddpg --seed 0" + out, "--scenario: unknown scenario 'highway'"},
+      {"run --scenario pendulum --algo ddpg --seed -1" + out, "--seed: must be a non-negative integer"},
+      {"run --scenario pendulum --algo ddpg --seed 0 --set stepz=3" + out, "unknown config key 'stepz'"},
+      {"run --scenario pendulum --algo ddpg --seed 0 --set steps=abc" + out, "config key 'steps' expects number"},
+      {"run --scenario pendulum --algo ddpg --seed 0 --set batch_size=1" + out, "'batch_size' must be at least 2"},
+      {"run --scenario pendulum --algo ddpg --seed 0 --dataset medium" + out, "'ddpg' takes no dataset"},
+      {"run --scenario pendulum --algo rlpd --seed 0" + out, "'rlpd' needs a prior dataset"},
+      {"run --scenario pendulum --algo rlpd --seed 0 --dataset-dir " + dir.file("none") + " --dataset medium" + out,
+       "no dataset file at"},
+  };
+  for (const auto& [args, message] : cases) {
+    const auto r = rapid_cli(args, /*with_stderr=*/true);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_NE(r.text.find(message), std::string::npos) << args << "\n" << r.text;
+    EXPECT_EQ(std::count(r.text.begin(), r.text.end(), '\n'), 1) << args << "\n" << r.text;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("job"))) << args;
+  }
+  // A dataset of the wrong shape is a failed run with a record that names the mismatch.
+  const auto r = rapid_cli("run --scenario pendulum --algo rlpd --seed 0 --dataset " + dir.file("wrong_dims.h5") + out,
+                           /*with_stderr=*/true);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(read_record(dir.file("job"))["error"].get<std::string>().find("has 5 columns"), std::string::npos);
+  // So is one whose actions lie outside the action box [-1, 1].
+  write_dataset(dir.file("wide.h5"), rapid::testing::make_dataset(3, 1, {50}));
+  EXPECT_EQ(rapid_cli("run --scenario pendulum --algo rlpd --seed 0 --dataset " + dir.file("wide.h5") + out).exit_code, 1);
+  EXPECT_NE(read_record(dir.file("job"))["error"].get<std::string>().find("actions must lie in [-1, 1]"), std::string::npos);
+}
