@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Installs the Debian packages the harness needs (only those missing), then configures and
+# builds it into build/. Idempotent and non-interactive; safe to run before every command.
+#
+#   scripts/setup.sh            install + build (Release, x86-64-v3)
+#   RAPID_NATIVE=ON scripts/setup.sh    tune for this CPU instead (results then host-specific)
+set -euo pipefail
+
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build_dir=${RAPID_BUILD_DIR:-$here/build}
+
+packages=(
+  build-essential cmake git pkg-config
+  sumo                     # sumo, netconvert, libsumocpp, headers, SUMOConfig.cmake
+  libeigen3-dev nlohmann-json3-dev libcli11-dev
+  libhdf5-dev hdf5-tools   # HDF5 C++ API; h5dump for inspecting datasets
+  libomp-dev libgtest-dev libbenchmark-dev
+  python3-matplotlib       # figures (scripts/plot runs Debian's /usr/bin/python3)
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then
+    command -v sudo >/dev/null || { echo "setup: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+    sudo=sudo
+  fi
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+export SUMO_HOME=${SUMO_HOME:-/usr/share/sumo}
+cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DRAPID_NATIVE="${RAPID_NATIVE:-OFF}" >/dev/null
+cmake --build "$build_dir" -j "$(nproc)"
+echo "setup: built $build_dir/rapid"
