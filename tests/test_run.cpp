@@ -142,3 +142,15 @@ TEST(RapidRun, BadInputExitsTwoWithOneLineAndWritesNothing) {
   EXPECT_EQ(rapid_cli("run --scenario pendulum --algo rlpd --seed 0 --dataset " + dir.file("wide.h5") + out).exit_code, 1);
   EXPECT_NE(read_record(dir.file("job"))["error"].get<std::string>().find("actions must lie in [-1, 1]"), std::string::npos);
 }
+
+// DDPG learns the swing-up: ≥ −200 final mean evaluation return within 20,000 steps (a
+// well-tuned DDPG scores about −150). One seed keeps this a few seconds; the README's
+// "Algorithm check" runs all five.
+TEST(RapidRun, DdpgLearnsPendulum) {
+  rapid::testing::ScratchDir dir;
+  ASSERT_EQ(rapid_cli("run --scenario pendulum --algo ddpg --seed 1 --out " + dir.file("job")).exit_code, 0);
+  const auto r = read_record(dir.file("job"));
+  EXPECT_EQ(r["config"]["steps"], 20000);
+  EXPECT_LT(r["eval"][0]["return_mean"].get<double>(), -800.0) << "the untrained policy is poor";
+  EXPECT_GE(r["final"]["return_mean"].get<double>(), -200.0);
+}
