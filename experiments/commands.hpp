@@ -15,5 +15,7 @@ struct Command {
 Command add_rollout_command(CLI::App& parent);
 Command add_dataset_command(CLI::App& parent);
 Command add_run_command(CLI::App& parent);
+Command add_sweep_command(CLI::App& parent);
+Command add_status_command(CLI::App& parent);
 
 }  // namespace rapid

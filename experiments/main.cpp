@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
       rapid::add_rollout_command(app),
       rapid::add_dataset_command(app),
       rapid::add_run_command(app),
+      rapid::add_sweep_command(app),
+      rapid::add_status_command(app),
   };
 
   try {

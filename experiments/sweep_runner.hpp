@@ -1,0 +1,31 @@
+// The local backend: runs a sweep folder's job graph on N worker processes on this machine.
+// Jobs start when their dependencies are ok; jobs already done (sweep_state.hpp) are skipped
+// unless forced; a job whose process fails or dies is retried up to the grid's max_retries, then
+// stays failed while independent jobs go on and its dependants are marked blocked. SIGINT,
+// SIGTERM or SIGHUP stop the children, wait for them and return with `interrupted_by` set.
+//
+// The caller holds the folder's lock and has written its grid.json (cmd_sweep.cpp); this writes
+// job logs, outcome notes and, at the end, SWEEP/sweep.json.
+#pragma once
+
+#include <ostream>
+#include <string>
+
+#include "experiments/sweep_manifest.hpp"
+#include "experiments/sweep_selection.hpp"
+#include "experiments/sweep_state.hpp"
+
+namespace rapid {
+
+struct LocalSweepOptions {
+  int workers = 1;
+  Selection selection;
+  bool force = false;       // rerun the selected cells even if done (not their dependencies)
+  std::string binary;       // the rapid executable the jobs run
+  bool terminal = false;    // live redraw (stderr is a terminal) rather than log lines
+  std::ostream* progress = nullptr;  // where progress goes (stderr)
+};
+
+SweepReport run_local_sweep(const SweepFolder& folder, const LocalSweepOptions& options);
+
+}  // namespace rapid

@@ -1,0 +1,116 @@
+// Reliability under kills (SPEC §11, issue 6): kill -9 of a training child, kill -9 of the
+// runner, a second sweep on a busy folder, and Ctrl-C. Each disturbed sweep must end with the
+// same records (timings and provenance times aside) as an undisturbed one.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "tests/datasets/dataset_fixtures.hpp"
+#include "tests/sweep/sweep_test_util.hpp"
+
+namespace rapid {
+namespace {
+
+using namespace sweep_test;
+using nlohmann::json;
+
+// Long enough (a couple of seconds per job) to be caught mid-training by its progress file.
+constexpr long kSteps = 20000;
+
+class KillSweep : public ::testing::Test {
+ protected:
+  void SetUp() override { write_json(grid_path_, pendulum_grid("kill", {"ddpg"}, {0, 1}, kSteps)); }
+
+  std::string sweep_args(const fs::path& out, int jobs) const {
+    return "sweep " + grid_path_.string() + " --jobs " + std::to_string(jobs) + " --out " + out.string();
+  }
+  std::map<std::string, json> undisturbed() {
+    const fs::path out = dir_.path() / "undisturbed";
+    const Result r = run_rapid(sweep_args(out, 2));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return comparable_records(out);
+  }
+  std::string log_of(const fs::path& log) const {
+    std::ifstream in(log);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  testing::ScratchDir dir_;
+  fs::path grid_path_ = dir_.path() / "kill.json";
+  fs::path sweep_ = dir_.path() / "sweep";
+};
+
+TEST_F(KillSweep, AWorkerKilledMidJobIsRetriedAndTheRecordsMatchAnUndisturbedSweep) {
+  const fs::path log = dir_.path() / "runner.log";
+  const pid_t runner = spawn_rapid(sweep_args(sweep_, 2), log);
+  const fs::path progress = sweep_ / "jobs/pendulum/none/ddpg/seed0/progress.json";
+  const fs::path record = sweep_ / "jobs/pendulum/none/ddpg/seed0/record.json";
+  ASSERT_TRUE(wait_until([&] { return fs::exists(progress) || fs::exists(record); })) << log_of(log);
+  const pid_t worker = child_with_argument(runner, "--out jobs/pendulum/none/ddpg/seed0");
+  ASSERT_GT(worker, 0);
+  ASSERT_FALSE(fs::exists(record)) << "killed too late";
+  ASSERT_EQ(::kill(worker, SIGKILL), 0);
+
+  ASSERT_EQ(wait_exit(runner), 0) << log_of(log);
+  const json manifest = read_json(sweep_ / "sweep.json");
+  EXPECT_EQ(manifest["retries"], 1);
+  EXPECT_EQ(manifest["status"], "complete");
+  EXPECT_NE(log_of(log).find("killed by SIGKILL"), std::string::npos) << log_of(log);
+  EXPECT_EQ(comparable_records(sweep_), undisturbed());
+}
+
+TEST_F(KillSweep, AKilledRunnerResumesLeavingFinishedRecordsUntouched) {
+  const fs::path log = dir_.path() / "runner.log";
+  const pid_t runner = spawn_rapid(sweep_args(sweep_, 1), log);
+  // One worker: seed 0 finishes, then seed 1 is caught mid-training.
+  const fs::path seed1 = sweep_ / "jobs/pendulum/none/ddpg/seed1";
+  ASSERT_TRUE(wait_until([&] { return fs::exists(seed1 / "progress.json") || fs::exists(seed1 / "record.json"); }))
+      << log_of(log);
+  ASSERT_EQ(::kill(runner, SIGKILL), 0);
+  EXPECT_EQ(wait_exit(runner), 128 + SIGKILL);
+  ASSERT_TRUE(fs::exists(sweep_ / "jobs/pendulum/none/ddpg/seed0/record.json"));
+  ASSERT_FALSE(fs::exists(sweep_ / "jobs/pendulum/none/ddpg/seed1/record.json")) << "killed too late";
+  // The training child dies with its runner instead of writing on into the folder.
+  EXPECT_TRUE(wait_until([&] { return !process_running_in(sweep_); }, 10));
+  const auto finished = record_identities(sweep_);
+
+  const Result rerun = run_rapid(sweep_args(sweep_, 1));
+  ASSERT_EQ(rerun.exit_code, 0) << rerun.output;
+  EXPECT_EQ(jobs_ran(sweep_), (std::vector<std::string>{"pendulum/none/ddpg/seed1"}));
+  EXPECT_EQ(record_identities(sweep_).at("jobs/pendulum/none/ddpg/seed0"), finished.at("jobs/pendulum/none/ddpg/seed0"));
+  EXPECT_EQ(comparable_records(sweep_), undisturbed());
+}
+
+TEST_F(KillSweep, ASecondSweepOnTheFolderIsRefusedAndCtrlCStopsCleanly) {
+  const fs::path log = dir_.path() / "runner.log";
+  const pid_t runner = spawn_rapid(sweep_args(sweep_, 2), log);
+  const fs::path progress = sweep_ / "jobs/pendulum/none/ddpg/seed0/progress.json";
+  ASSERT_TRUE(wait_until([&] { return fs::exists(progress) || fs::exists(sweep_ / "sweep.json"); })) << log_of(log);
+  ASSERT_FALSE(fs::exists(sweep_ / "sweep.json")) << "the sweep ended too early";
+
+  const Result second = run_rapid(sweep_args(sweep_, 1));
+  EXPECT_EQ(second.exit_code, 2);
+  EXPECT_EQ(second.output, "rapid: error: sweep folder " + sweep_.string() + " is in use by another rapid sweep (pid " +
+                               std::to_string(runner) + ")\n");
+  const Result status = run_rapid("status --json " + sweep_.string());
+  ASSERT_EQ(status.exit_code, 0) << status.output;
+  EXPECT_EQ(json::parse(status.output)["counts"]["running"], 2) << status.output;
+
+  ASSERT_EQ(::kill(runner, SIGINT), 0);
+  EXPECT_EQ(wait_exit(runner), 130) << log_of(log);
+  EXPECT_FALSE(process_running_in(sweep_));
+  const json manifest = read_json(sweep_ / "sweep.json");
+  EXPECT_EQ(manifest["status"], "interrupted");
+  EXPECT_EQ(manifest["jobs"]["not_run"], 2);
+  EXPECT_FALSE(fs::exists(progress)) << "a stopped job leaves no progress file behind";
+  const json after = json::parse(run_rapid("status --json " + sweep_.string()).output);
+  EXPECT_EQ(after["counts"]["pending"], 2);
+  EXPECT_EQ(after["active"], false);
+}
+
+}  // namespace
+}  // namespace rapid
