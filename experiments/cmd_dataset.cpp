@@ -15,6 +15,11 @@
 #include "core/dataset_stats.hpp"
 #include "experiments/cli_errors.hpp"
 #include "experiments/commands.hpp"
+#include "experiments/dataset_build.hpp"
+#include "experiments/grid.hpp"
+#include "experiments/job.hpp"
+#include "experiments/run_config.hpp"
+#include "envs/env.hpp"
 
 namespace rapid {
 
@@ -112,6 +117,52 @@ Command add_info(CLI::App& dataset) {
   return {sub, [opts] { return run_info(*opts); }};
 }
 
+struct BuildOptions {
+  std::string scenario, grid, dir = "datasets";
+  std::vector<std::string> sets;
+  bool reference_only = false, force = false;
+};
+
+int run_build(const BuildOptions& o) {
+  DatasetBuildSpec spec;
+  try {
+    make_env(o.scenario);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--scenario: ") + e.what());
+  }
+  spec.scenario = o.scenario;
+  spec.dir = o.dir;
+  spec.reference_only = o.reference_only;
+  spec.force = o.force;
+  try {
+    nlohmann::json sets = nlohmann::json::object();
+    for (const auto& s : o.sets) parse_set_option(s, sets);
+    nlohmann::json overrides;
+    if (!o.grid.empty()) {
+      const Grid grid = load_grid(o.grid);
+      overrides = grid_overrides(grid, o.scenario);
+      spec.reference = grid.reference;
+    }
+    spec.config = resolve_config(o.scenario, overrides, sets);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  return build_datasets(spec);
+}
+
+Command add_build(CLI::App& dataset) {
+  auto o = std::make_shared<BuildOptions>();
+  CLI::App* sub = dataset.add_subcommand(
+      "build", "Train (or reuse) the reference DDPG agent and write initial, medium, final and final+medium");
+  sub->add_option("--scenario", o->scenario, "lane-drop, cut-in, merge or pendulum")->required();
+  sub->add_option("--grid", o->grid, "grid whose config overrides and \"reference\" settings apply");
+  sub->add_option("--dir", o->dir, "output folder; datasets go to DIR/<scenario>/<name>.h5");
+  sub->add_option("--set", o->sets, "override a config key of the reference agent: --set key=value");
+  sub->add_flag("--reference-only", o->reference_only, "stop after training the reference agent");
+  sub->add_flag("--force", o->force, "redo both stages even if their outputs are up to date");
+  return {sub, [o] { return run_build(*o); }};
+}
+
 }  // namespace
 
 Command add_dataset_command(CLI::App& parent) {
@@ -120,6 +171,7 @@ Command add_dataset_command(CLI::App& parent) {
   // One entry per action; the one that was given runs.
   auto actions = std::make_shared<std::vector<Command>>(std::vector<Command>{
       add_info(*sub),
+      add_build(*sub),
   });
   return {sub, [actions] {
             for (const Command& action : *actions)

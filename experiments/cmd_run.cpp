@@ -1,12 +1,12 @@
 // `rapid run`: train one job (one seed of one table cell) and write its run record (SPEC §3, §8).
 #include <filesystem>
-#include <fstream>
 
 #include "algos/registry.hpp"
 #include "envs/env.hpp"
 #include "experiments/cli_checks.hpp"
 #include "experiments/cli_errors.hpp"
 #include "experiments/commands.hpp"
+#include "experiments/grid.hpp"
 #include "experiments/job.hpp"
 #include "experiments/run_config.hpp"
 
@@ -28,17 +28,13 @@ std::string resolve_dataset_path(const RunOptions& o) {
   return o.dataset;
 }
 
-// The grid's overrides for this scenario: its "config" object, then "scenario_config"[scenario].
-nlohmann::json grid_overrides(const std::string& grid_path, const std::string& scenario) {
-  std::ifstream in(grid_path);
-  if (!in) throw UsageError("--grid: cannot read '" + grid_path + "'");
-  nlohmann::json grid = nlohmann::json::parse(in, nullptr, false);
-  if (grid.is_discarded() || !grid.is_object()) throw UsageError("--grid: '" + grid_path + "' is not a JSON object");
-  nlohmann::json out = nlohmann::json::object();
-  if (grid.contains("config")) out.update(grid["config"]);
-  if (grid.contains("scenario_config") && grid["scenario_config"].contains(scenario))
-    out.update(grid["scenario_config"][scenario]);
-  return out;
+// The grid's overrides for this scenario, validated like `rapid sweep` validates the grid.
+nlohmann::json overrides_from_grid(const std::string& grid_path, const std::string& scenario) {
+  try {
+    return grid_overrides(load_grid(grid_path), scenario);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--grid: ") + e.what());
+  }
 }
 
 int run_command(const RunOptions& o) {
@@ -73,7 +69,7 @@ int run_command(const RunOptions& o) {
   nlohmann::json sets = nlohmann::json::object();
   try {
     for (const auto& s : o.sets) parse_set_option(s, sets);
-    spec.config = resolve_config(o.scenario, o.grid.empty() ? nlohmann::json() : grid_overrides(o.grid, o.scenario), sets);
+    spec.config = resolve_config(o.scenario, o.grid.empty() ? nlohmann::json() : overrides_from_grid(o.grid, o.scenario), sets);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }

@@ -1,0 +1,31 @@
+// Building a scenario's prior datasets (SPEC §6, paper IV-A-2): train a reference DDPG agent with
+// its own seed for the grid's full budget, keep its actor at 1/10, 1/2 and the end, and roll each
+// checkpoint out with exploration noise into `initial`, `medium` and `final`; `final+medium` is
+// half of each.
+//
+// Folder DIR/<scenario>/: reference/ (a run folder: record.json, actor_<step>.ckpt, actor.ckpt),
+// initial.h5, medium.h5, final.h5, final+medium.h5, and build.json written last.
+// Both stages are skipped when their outputs exist with a matching hash, so rerunning is cheap.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "experiments/grid.hpp"  // ReferenceSettings: a grid's "reference" object
+
+namespace rapid {
+
+struct DatasetBuildSpec {
+  std::string scenario;
+  nlohmann::json config;  // the reference agent's resolved run config
+  ReferenceSettings reference;
+  std::string dir;        // DIR; outputs go to DIR/<scenario>/
+  bool reference_only = false;
+  bool force = false;
+};
+
+// Runs whatever stage is missing or stale. Returns 0 on success, 1 when the reference agent or a
+// dataset failed (its record or the message says why).
+int build_datasets(const DatasetBuildSpec& spec);
+
+}  // namespace rapid

@@ -1,0 +1,89 @@
+// `rapid dataset build` on the pendulum (seconds): the reference agent's checkpoints, the four
+// datasets with their metadata, and reuse of up-to-date stages.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.hpp"
+#include "core/dataset_io.hpp"
+#include "core/dataset_mix.hpp"
+#include "core/dataset_stats.hpp"
+#include "tests/cli_runner.hpp"
+#include "tests/datasets/dataset_fixtures.hpp"
+
+using namespace rapid;
+using test::rapid_cli;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A pendulum grid with a small budget; the reference agent trains 2,000 steps and each dataset
+// holds 1,000 transitions (5 episodes).
+void write_grid(const std::string& path, long transitions) {
+  const nlohmann::json grid = {
+      {"name", "tiny"},
+      {"scenarios", {"pendulum"}},
+      {"datasets", {"initial", "final+medium"}},
+      {"algos", {"rapid-rl"}},
+      {"seeds", {0}},
+      {"config", {{"steps", 2000}, {"warmup_steps", 200}, {"eval_every", 1000}, {"eval_episodes", 2}}},
+      {"reference", {{"seed", 1000}, {"transitions", transitions}, {"noise_std", 0.1}}}};
+  write_file_atomic(path, grid.dump());
+}
+
+fs::file_time_type mtime(const std::string& p) { return fs::last_write_time(p); }
+
+}  // namespace
+
+TEST(DatasetBuild, WritesCheckpointsDatasetsAndReusesThem) {
+  rapid::testing::ScratchDir dir;
+  write_grid(dir.file("grid.json"), 1000);
+  const std::string cmd = "dataset build --scenario pendulum --grid " + dir.file("grid.json") + " --dir " + dir.file("data");
+  const auto first = rapid_cli(cmd, /*with_stderr=*/true);
+  ASSERT_EQ(first.exit_code, 0) << first.text;
+  const std::string out = dir.file("data/pendulum");
+  for (const char* f : {"reference/record.json", "reference/actor_200.ckpt", "reference/actor_1000.ckpt",
+                        "reference/actor.ckpt", "initial.h5", "medium.h5", "final.h5", "final+medium.h5", "build.json"})
+    EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
+  EXPECT_EQ(nlohmann::json::parse(read_file(out + "/reference/record.json"))["cell"]["seed"], 1000);
+
+  const Dataset initial = read_dataset(out + "/initial.h5", {3, 1, "pendulum"});
+  const Dataset final_data = read_dataset(out + "/final.h5", {3, 1, "pendulum"});
+  const Dataset mixed = read_dataset(out + "/final+medium.h5", {3, 1, "pendulum"});
+  EXPECT_EQ(initial.size(), 1000u);
+  EXPECT_EQ(initial.metadata.at("scenario"), "pendulum");
+  EXPECT_EQ(initial.metadata.at("seed"), "1000");
+  EXPECT_NE(initial.metadata.at("source_checkpoint").find("actor_200"), std::string::npos);
+  EXPECT_FALSE(initial.metadata.at("code_revision").empty());
+  // Half of each source in whole episodes: up to the first episode end at or past N/2.
+  const Dataset medium = read_dataset(out + "/medium.h5");
+  EXPECT_EQ(mixed.size(), half_by_episodes_size(final_data) + half_by_episodes_size(medium));
+  EXPECT_EQ(half_by_episodes_size(final_data), 600u);  // 200-step episodes: 3 of 5
+  // The first half of final+medium is final's first episodes, bit for bit.
+  EXPECT_EQ(mixed.observations.leftCols(200), final_data.observations.leftCols(200));
+  EXPECT_LE(initial.actions.cwiseAbs().maxCoeff(), 1.0f);
+
+  // Rerunning reuses both stages: nothing is rewritten.
+  const auto ref_time = mtime(out + "/reference/record.json"), data_time = mtime(out + "/initial.h5");
+  ASSERT_EQ(rapid_cli(cmd).exit_code, 0);
+  EXPECT_EQ(mtime(out + "/reference/record.json"), ref_time);
+  EXPECT_EQ(mtime(out + "/initial.h5"), data_time);
+
+  // A changed collection setting redoes the datasets but keeps the reference agent.
+  write_grid(dir.file("grid.json"), 600);
+  ASSERT_EQ(rapid_cli(cmd).exit_code, 0);
+  EXPECT_EQ(mtime(out + "/reference/record.json"), ref_time);
+  EXPECT_EQ(read_dataset(out + "/initial.h5").size(), 600u);
+}
+
+TEST(DatasetBuild, BadInputExitsTwo) {
+  rapid::testing::ScratchDir dir;
+  const auto r = rapid_cli("dataset build --scenario nowhere --dir " + dir.file("d"), /*with_stderr=*/true);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.text.find("unknown scenario 'nowhere'"), std::string::npos) << r.text;
+  const auto g = rapid_cli("dataset build --scenario pendulum --grid " + dir.file("missing.json") + " --dir " + dir.file("d"),
+                           /*with_stderr=*/true);
+  EXPECT_EQ(g.exit_code, 2) << g.text;
+  EXPECT_FALSE(fs::exists(dir.file("d")));
+}
