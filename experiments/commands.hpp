@@ -17,5 +17,7 @@ Command add_dataset_command(CLI::App& parent);
 Command add_run_command(CLI::App& parent);
 Command add_sweep_command(CLI::App& parent);
 Command add_status_command(CLI::App& parent);
+Command add_summarize_command(CLI::App& parent);
+Command add_diff_command(CLI::App& parent);
 
 }  // namespace rapid

@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
       rapid::add_run_command(app),
       rapid::add_sweep_command(app),
       rapid::add_status_command(app),
+      rapid::add_summarize_command(app),
+      rapid::add_diff_command(app),
   };
 
   try {

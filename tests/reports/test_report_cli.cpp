@@ -1,0 +1,173 @@
+// `rapid summarize` and `rapid diff` as users run them: the built binary on hand-made sweeps.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "tests/cli_runner.hpp"
+#include "tests/datasets/dataset_fixtures.hpp"
+#include "tests/reports/report_test_util.hpp"
+
+namespace rapid {
+namespace {
+
+using report_test::FakeRun;
+using test::rapid_cli;
+
+class ReportCliTest : public ::testing::Test {
+ protected:
+  testing::ScratchDir scratch;
+  std::filesystem::path sweep = scratch.path() / "sweep";
+  std::filesystem::path baseline = scratch.path() / "baseline.json";
+
+  void SetUp() override {
+    report_test::write_grid(sweep, report_test::make_grid("cli", {"pendulum"}, {"initial", "final+medium"},
+                                                          {"rapid-rl", "col-all", "ddpg"}, {0, 1, 2}));
+    for (const std::string dataset : {"initial", "final+medium"})
+      for (const std::string algo : {"rapid-rl", "col-all"})
+        for (std::uint64_t seed : {0u, 1u, 2u}) run(dataset, algo, seed, 100.0 + 10 * seed + (algo == "col-all" ? -80 : 0));
+    for (std::uint64_t seed : {0u, 1u, 2u}) run("", "ddpg", seed, 50.0 + seed);
+  }
+  void run(const std::string& dataset, const std::string& algo, std::uint64_t seed, double final,
+           const std::string& status = "ok") {
+    FakeRun r;
+    r.scenario = "pendulum";
+    r.dataset = dataset;
+    r.algo = algo;
+    r.seed = seed;
+    r.final_return = final;
+    r.status = status;
+    r.eval = {{0, 0.0}, {500, final / 2}, {1000, final}};
+    r.bc = {{0, 0.1, 0.5}, {500, 0.2, 0.4}};
+    report_test::write_run(sweep, r);
+  }
+  test::CliOutput write_baseline() {
+    return rapid_cli("diff " + sweep.string() + " " + baseline.string() + " --write-baseline", true);
+  }
+  test::CliOutput diff(const std::string& extra = "") {
+    return rapid_cli("diff " + sweep.string() + " " + baseline.string() + extra, true);
+  }
+};
+
+TEST_F(ReportCliTest, SummarizeWritesEveryReportAndShowsFailedSeeds) {
+  run("initial", "rapid-rl", 2, 0, "failed");
+  const auto out = rapid_cli("summarize " + sweep.string() + " --no-plots", true);
+  ASSERT_EQ(out.exit_code, 0) << out.text;
+  for (const char* f : {"table.md", "table.tex", "table.csv", "summary.json", "claims.md"})
+    EXPECT_TRUE(std::filesystem::is_regular_file(sweep / f)) << f;
+  const std::string md = report_test::read_text(sweep / "table.md");
+  EXPECT_NE(md.find("105.0 ± 5.0 (n=2/3)"), std::string::npos) << md;
+  EXPECT_EQ(report_test::read_json(sweep / "summary.json")["schema"], "rapid.summary/1");
+  EXPECT_NE(out.text.find("C1 "), std::string::npos) << out.text;
+  EXPECT_NE(report_test::read_text(sweep / "claims.md").find("## C3: PASS"), std::string::npos);
+}
+
+TEST_F(ReportCliTest, SummarizeSaysSoWhenPythonHasNoMatplotlib) {
+  ::setenv("RAPID_PYTHON", "/nonexistent/python3", 1);
+  const auto out = rapid_cli("summarize " + sweep.string(), true);
+  ::unsetenv("RAPID_PYTHON");
+  EXPECT_EQ(out.exit_code, 0) << out.text;
+  EXPECT_NE(out.text.find("figures skipped: /nonexistent/python3 has no matplotlib"), std::string::npos) << out.text;
+  EXPECT_TRUE(std::filesystem::is_regular_file(sweep / "table.md"));
+}
+
+TEST_F(ReportCliTest, SummarizeDrawsTheFiguresWhenMatplotlibIsThere) {
+  if (std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") != 0) GTEST_SKIP() << "no matplotlib";
+  const auto out = rapid_cli("summarize " + sweep.string(), true);
+  ASSERT_EQ(out.exit_code, 0) << out.text;
+  for (const char* f : {"figure2", "figure3a", "figure3b"})
+    for (const char* ext : {".png", ".pdf"})
+      EXPECT_GT(std::filesystem::file_size(sweep / (std::string(f) + ext)), 1000u) << f << ext;
+}
+
+TEST_F(ReportCliTest, BadInputExitsTwoWithOneLine) {
+  auto out = rapid_cli("summarize " + (scratch.path() / "nope").string(), true);
+  EXPECT_EQ(out.exit_code, 2);
+  EXPECT_NE(out.text.find("SWEEP_DIR"), std::string::npos) << out.text;
+  EXPECT_EQ(std::count(out.text.begin(), out.text.end(), '\n'), 1) << out.text;
+  out = rapid_cli("diff " + (scratch.path() / "nope").string() + " " + baseline.string(), true);
+  EXPECT_EQ(out.exit_code, 2) << out.text;
+  out = diff();  // the baseline file does not exist
+  EXPECT_EQ(out.exit_code, 2) << out.text;
+  EXPECT_NE(out.text.find("BASELINE"), std::string::npos) << out.text;
+  ASSERT_EQ(write_baseline().exit_code, 0);
+  out = diff(" --rtol -1");
+  EXPECT_EQ(out.exit_code, 2) << out.text;
+  EXPECT_NE(out.text.find("--rtol"), std::string::npos) << out.text;
+  EXPECT_EQ(rapid_cli("summarize --help").exit_code, 0);
+  EXPECT_EQ(rapid_cli("diff --help").exit_code, 0);
+}
+
+TEST_F(ReportCliTest, DiffPassesOnAnIdenticalSweep) {
+  const auto written = write_baseline();
+  ASSERT_EQ(written.exit_code, 0) << written.text;
+  EXPECT_EQ(report_test::read_json(baseline)["schema"], "rapid.baseline/1");
+  const auto out = diff();
+  EXPECT_EQ(out.exit_code, 0) << out.text;
+  EXPECT_NE(out.text.find("no differences in 5 cells"), std::string::npos) << out.text;
+}
+
+TEST_F(ReportCliTest, DiffFailsOnAChangedValue) {
+  ASSERT_EQ(write_baseline().exit_code, 0);
+  run("initial", "rapid-rl", 1, 110.001);
+  const auto out = diff();
+  EXPECT_EQ(out.exit_code, 1) << out.text;
+  EXPECT_NE(out.text.find("pendulum/initial/rapid-rl"), std::string::npos) << out.text;
+  EXPECT_NE(out.text.find("mean differs"), std::string::npos) << out.text;
+  EXPECT_EQ(out.text.find("pendulum/final+medium/rapid-rl"), std::string::npos) << out.text;
+  EXPECT_EQ(diff(" --rtol 1e-3").exit_code, 0);  // within a looser tolerance
+}
+
+TEST_F(ReportCliTest, DiffStatPassesInsideTheIntervalAndFailsOutside) {
+  ASSERT_EQ(write_baseline().exit_code, 0);
+  run("initial", "rapid-rl", 1, 112);  // mean 100,110,120 → 100,112,120: the baseline mean 110 is inside the CI
+  EXPECT_EQ(diff().exit_code, 1);
+  auto out = diff(" --stat");
+  EXPECT_EQ(out.exit_code, 0) << out.text;
+  for (std::uint64_t seed : {0u, 1u, 2u}) run("initial", "rapid-rl", seed, 500.0 + seed);
+  out = diff(" --stat");
+  EXPECT_EQ(out.exit_code, 1) << out.text;
+  EXPECT_NE(out.text.find("outside the new 95% interval"), std::string::npos) << out.text;
+}
+
+TEST_F(ReportCliTest, DiffFailsOnAFailedSeed) {
+  ASSERT_EQ(write_baseline().exit_code, 0);
+  run("", "ddpg", 1, 0, "diverged");
+  const auto out = diff(" --stat");
+  EXPECT_EQ(out.exit_code, 1) << out.text;
+  EXPECT_NE(out.text.find("ok seeds 3/3 → 2/3"), std::string::npos) << out.text;
+}
+
+TEST_F(ReportCliTest, DiffFailsOnACellMissingOnEitherSide) {
+  ASSERT_EQ(write_baseline().exit_code, 0);
+  nlohmann::json b = report_test::read_json(baseline);
+  const nlohmann::json dropped = b["cells"][0];
+  b["cells"].erase(0);
+  nlohmann::json extra = dropped;
+  extra["cell"] = "pendulum/final/rapid-rl";
+  b["cells"].push_back(extra);
+  report_test::write_text(baseline, b.dump());
+  const auto out = diff();
+  EXPECT_EQ(out.exit_code, 1) << out.text;
+  EXPECT_NE(out.text.find(dropped["cell"].get<std::string>()), std::string::npos) << out.text;
+  EXPECT_NE(out.text.find("missing from the baseline"), std::string::npos) << out.text;
+  EXPECT_NE(out.text.find("pendulum/final/rapid-rl"), std::string::npos) << out.text;
+  EXPECT_NE(out.text.find("missing from the sweep"), std::string::npos) << out.text;
+}
+
+TEST_F(ReportCliTest, DiffFailsOnAWrongSchema) {
+  ASSERT_EQ(write_baseline().exit_code, 0);
+  nlohmann::json b = report_test::read_json(baseline);
+  b["schema"] = "rapid.baseline/0";
+  report_test::write_text(baseline, b.dump());
+  auto out = diff();
+  EXPECT_EQ(out.exit_code, 1) << out.text;
+  EXPECT_NE(out.text.find("schema mismatch"), std::string::npos) << out.text;
+  // A summary.json is not a baseline either.
+  ASSERT_EQ(rapid_cli("summarize " + sweep.string() + " --no-plots").exit_code, 0);
+  out = rapid_cli("diff " + sweep.string() + " " + (sweep / "summary.json").string(), true);
+  EXPECT_EQ(out.exit_code, 1) << out.text;
+  EXPECT_NE(out.text.find("schema mismatch"), std::string::npos) << out.text;
+}
+
+}  // namespace
+}  // namespace rapid

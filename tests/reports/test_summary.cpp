@@ -1,0 +1,180 @@
+// build_summary and the table writers on hand-made records: the numbers, the seed counts of
+// failed/missing/stale runs, the curves, and how Table I lays them out.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/statistics.hpp"
+#include "tests/datasets/dataset_fixtures.hpp"
+#include "experiments/report_tables.hpp"
+#include "experiments/summary.hpp"
+#include "tests/reports/report_test_util.hpp"
+
+namespace rapid {
+namespace {
+
+using report_test::FakeRun;
+
+class SummaryTest : public ::testing::Test {
+ protected:
+  testing::ScratchDir scratch;
+  std::filesystem::path sweep = scratch.path() / "sweep";
+
+  void SetUp() override {
+    report_test::write_grid(sweep, report_test::make_grid("unit", {"pendulum"}, {"initial", "final+medium"},
+                                                          {"rapid-rl", "rlpd", "ddpg"}, {0, 1, 2, 3, 4, 5, 6, 7}));
+  }
+  void run(const std::string& dataset, const std::string& algo, std::uint64_t seed, double final,
+           const std::string& status = "ok") {
+    FakeRun r;
+    r.scenario = "pendulum";
+    r.dataset = dataset;
+    r.algo = algo;
+    r.seed = seed;
+    r.final_return = final;
+    r.status = status;
+    r.eval = {{0, 0.0}, {500, final / 2}, {1000, final}};
+    r.bc = {{0, 1.0 + seed, 2.0}, {100, 0.5, 1.0}};
+    report_test::write_run(sweep, r);
+  }
+  void fill(const std::string& dataset, const std::string& algo, const std::vector<double>& finals) {
+    for (std::size_t s = 0; s < finals.size(); ++s) run(dataset, algo, s, finals[s]);
+  }
+};
+
+TEST_F(SummaryTest, CellStatisticsMatchHandComputedValues) {
+  const std::vector<double> finals = {10, 1, 7, 3, 100, 5, -50, 6};
+  fill("initial", "rapid-rl", finals);
+  const Summary s = build_summary(sweep);
+  const CellSummary* c = s.find("pendulum", "initial", "rapid-rl");
+  ASSERT_NE(c, nullptr);
+  EXPECT_EQ(c->n_ok, 8);
+  EXPECT_EQ(c->n_expected, 8);
+  EXPECT_DOUBLE_EQ(*c->mean, 82.0 / 8);
+  double sq = 0;
+  for (double f : finals) sq += (f - 82.0 / 8) * (f - 82.0 / 8);
+  EXPECT_DOUBLE_EQ(*c->std, std::sqrt(sq / 8));
+  EXPECT_DOUBLE_EQ(*c->iqm, 5.25);  // middle four of -50 1 3 5 6 7 10 100
+  ASSERT_TRUE(c->iqm_ci && c->mean_ci);
+  EXPECT_TRUE(c->iqm_ci->contains(*c->iqm));
+  EXPECT_TRUE(c->mean_ci->contains(*c->mean));
+  EXPECT_GE(c->iqm_ci->lo, -50.0);
+  EXPECT_LE(c->iqm_ci->hi, 100.0);
+  EXPECT_LT(c->iqm_ci->hi - c->iqm_ci->lo, c->mean_ci->hi - c->mean_ci->lo);  // the IQM ignores the outliers
+  // Deterministic: a second summary gives the same interval bits.
+  const Summary again = build_summary(sweep);
+  EXPECT_EQ(again.find("pendulum", "initial", "rapid-rl")->iqm_ci->lo, c->iqm_ci->lo);
+  EXPECT_EQ(again.find("pendulum", "initial", "rapid-rl")->iqm_ci->hi, c->iqm_ci->hi);
+}
+
+TEST_F(SummaryTest, FailedDivergedMissingAndStaleSeedsAreCountedNotAveraged) {
+  fill("initial", "rapid-rl", {1, 2, 3, 4, 5});  // seeds 5, 6, 7 below
+  run("initial", "rapid-rl", 5, 999, "failed");
+  run("initial", "rapid-rl", 6, 999, "diverged");
+  // seed 7: no record
+  FakeRun stale;
+  stale.scenario = "pendulum";
+  stale.algo = "ddpg";
+  stale.seed = 0;
+  stale.final_return = 999;
+  report_test::write_run(sweep, stale, "0123456789abcdef");  // not the grid's hash
+  const Summary s = build_summary(sweep);
+  const CellSummary* c = s.find("pendulum", "initial", "rapid-rl");
+  EXPECT_EQ(c->n_ok, 5);
+  EXPECT_EQ(c->n_expected, 8);
+  EXPECT_DOUBLE_EQ(*c->mean, 3.0);
+  EXPECT_EQ(c->statuses.at("failed"), 1);
+  EXPECT_EQ(c->statuses.at("diverged"), 1);
+  EXPECT_EQ(c->statuses.at("missing"), 1);
+  const CellSummary* d = s.find("pendulum", "", "ddpg");
+  EXPECT_EQ(d->n_ok, 0);
+  EXPECT_EQ(d->statuses.at("stale"), 1);
+  EXPECT_FALSE(d->mean.has_value());
+
+  const std::string md = table_markdown(s);
+  EXPECT_NE(md.find("3.00 ± 1.41 (n=5/8)"), std::string::npos) << md;
+  EXPECT_NE(md.find("— (n=0/8)"), std::string::npos) << md;  // ddpg: nothing ok
+  const std::string tex = table_latex(s);
+  EXPECT_NE(tex.find("(n=5/8)"), std::string::npos);
+  EXPECT_NE(tex.find("--- {\\scriptsize (n=0/8)}"), std::string::npos);
+}
+
+TEST_F(SummaryTest, DdpgRepeatsInEveryDatasetRowAndTheBestMeanIsMarked) {
+  fill("initial", "rapid-rl", {10, 12});
+  fill("final+medium", "rapid-rl", {1, 1});
+  fill("initial", "rlpd", {5, 5});
+  fill("final+medium", "rlpd", {2, 2});
+  fill("", "ddpg", {3, 5});
+  const Summary s = build_summary(sweep);
+  ASSERT_EQ(s.rows.size(), 2u);
+  EXPECT_EQ(s.column_cell(s.rows[0], "ddpg"), s.column_cell(s.rows[1], "ddpg"));
+  EXPECT_EQ(*s.rows[0].best, "rapid-rl");
+  EXPECT_EQ(*s.rows[1].best, "ddpg");
+  const std::string md = table_markdown(s);
+  EXPECT_NE(md.find("| Pendulum | Initial | **11.00 ± 1.00 (n=2/8)** | 5.00 ± 0.00 (n=2/8) | 4.00 ± 1.00 (n=2/8) |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| Pendulum | Final+Medium | 1.00 ± 0.00 (n=2/8) | 2.00 ± 0.00 (n=2/8) | **4.00 ± 1.00 (n=2/8)** |"),
+            std::string::npos)
+      << md;
+  const std::string tex = table_latex(s);
+  EXPECT_NE(tex.find("\\cellcolor{cyan!15}$11.00 \\pm 1.00$"), std::string::npos) << tex;
+  EXPECT_NE(tex.find("\\usepackage[table]{xcolor}"), std::string::npos);
+  EXPECT_NE(tex.find("\\toprule"), std::string::npos);
+  const std::string csv = table_csv(s);
+  EXPECT_NE(csv.find("pendulum,initial,11,1,2,8,5,0,2,8,4,1,2,8,rapid-rl\n"), std::string::npos) << csv;
+}
+
+TEST_F(SummaryTest, CurvesAreAveragedPerStepAndProbabilityOfImprovementIsComputed) {
+  fill("initial", "rapid-rl", {10, 20});
+  fill("initial", "rlpd", {15, 15});
+  const Summary s = build_summary(sweep);
+  const CellSummary* c = s.find("pendulum", "initial", "rapid-rl");
+  ASSERT_EQ(c->eval.step.size(), 3u);
+  EXPECT_DOUBLE_EQ(c->eval.step[2], 1000);
+  EXPECT_DOUBLE_EQ(c->eval.mean[2], 15);
+  EXPECT_DOUBLE_EQ(c->eval.std[2], 5);
+  EXPECT_EQ(c->eval.n[2], 2);
+  EXPECT_DOUBLE_EQ(*c->eval_auc, 7.5);  // trapezoid over (0,0) (500,7.5) (1000,15), divided by 1000
+  ASSERT_EQ(c->bc_prior.step.size(), 2u);
+  EXPECT_DOUBLE_EQ(c->bc_prior.mean[0], 1.5);  // seeds 0 and 1: 1 and 2
+  EXPECT_DOUBLE_EQ(c->bc_online.mean[1], 1.0);
+  const auto poi = std::find_if(s.poi.begin(), s.poi.end(), [](const PoiEntry& p) {
+    return p.dataset == "initial" && p.baseline == "rlpd";
+  });
+  ASSERT_NE(poi, s.poi.end());
+  EXPECT_DOUBLE_EQ(poi->p, 0.5);  // 10 < 15, 20 > 15
+  ASSERT_TRUE(poi->ci.has_value());
+  EXPECT_TRUE(poi->ci->contains(0.5));
+  EXPECT_DOUBLE_EQ(s.epsilon.at("pendulum"), -0.5);
+}
+
+TEST_F(SummaryTest, SummaryJsonCarriesTheSchemaCellsAndAggregates) {
+  fill("initial", "rapid-rl", {1, 2, 3, 4});
+  fill("final+medium", "rapid-rl", {5, 6, 7, 8});
+  const nlohmann::json j = summary_to_json(build_summary(sweep));
+  EXPECT_EQ(j["schema"], "rapid.summary/1");
+  const auto cell = std::find_if(j["cells"].begin(), j["cells"].end(), [](const nlohmann::json& c) {
+    return c["dataset"] == "initial" && c["algo"] == "rapid-rl";
+  });
+  ASSERT_NE(cell, j["cells"].end());
+  EXPECT_EQ((*cell)["n_ok"], 4);
+  EXPECT_EQ((*cell)["n_expected"], 8);
+  EXPECT_EQ((*cell)["statuses"]["missing"], 4);
+  EXPECT_EQ((*cell)["finals"].size(), 4u);
+  EXPECT_EQ((*cell)["iqm_ci"].size(), 2u);
+  const auto ddpg = std::find_if(j["cells"].begin(), j["cells"].end(), [](const nlohmann::json& c) { return c["algo"] == "ddpg"; });
+  EXPECT_TRUE((*ddpg)["dataset"].is_null());
+  EXPECT_TRUE((*ddpg)["mean"].is_null());
+  ASSERT_EQ(j["aggregate_iqm"].size(), 1u);  // only rapid-rl has ok runs
+  EXPECT_EQ(j["aggregate_iqm"][0]["algo"], "rapid-rl");
+  EXPECT_DOUBLE_EQ(j["aggregate_iqm"][0]["iqm"].get<double>(), 4.5);  // 8 runs: middle four 3 4 5 6
+  EXPECT_EQ(j["aggregate_iqm"][0]["n_cells"], 2);
+  EXPECT_EQ(j["scenarios"]["pendulum"]["epsilon"], -0.5);
+  EXPECT_TRUE(j["scenarios"]["pendulum"]["datasets"]["initial"]["missing"].get<bool>());
+  EXPECT_EQ(j["claims"].size(), 6u);
+}
+
+}  // namespace
+}  // namespace rapid
