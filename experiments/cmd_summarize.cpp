@@ -44,14 +44,16 @@ bool draw_figures(const fs::path& summary_json, const fs::path& out) {
   return true;
 }
 
-int summarize_command(const SummarizeOptions& o) {
+}  // namespace
+
+int write_reports(const std::string& sweep_dir, const std::string& out_dir, bool plots) {
   Summary summary;
   try {
-    summary = build_summary(o.dir);
+    summary = build_summary(sweep_dir);
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("SWEEP_DIR: ") + e.what());
   }
-  const fs::path out = o.out.empty() ? fs::path(o.dir) : fs::path(o.out);
+  const fs::path out = out_dir.empty() ? fs::path(sweep_dir) : fs::path(out_dir);
   std::error_code ec;
   fs::create_directories(out, ec);
   if (!fs::is_directory(out)) throw UsageError("--out: cannot create folder '" + out.string() + "'");
@@ -72,9 +74,13 @@ int summarize_command(const SummarizeOptions& o) {
             << out.string() << ": table.md table.tex table.csv summary.json claims.md\n";
   for (const std::string& w : summary.warnings) std::cout << "warning: " << w << "\n";
   for (const ClaimResult& c : summary.claims) std::cout << "  " << c.id << " " << c.verdict << ": " << c.reason << "\n";
-  if (o.no_plots) return kExitOk;
+  if (!plots) return kExitOk;
   return draw_figures(summary_json, out) ? kExitOk : kExitFailed;
 }
+
+namespace {
+
+int summarize_command(const SummarizeOptions& o) { return write_reports(o.dir, o.out, !o.no_plots); }
 
 }  // namespace
 
