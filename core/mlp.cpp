@@ -104,7 +104,9 @@ void Mlp::forward_layer(Layer& l, const ConstMatRef& x) {
     case LayerKind::kLinear: {
       Eigen::Map<const Mat> W(params_.data() + l.w_off, l.out, l.in);
       Eigen::Map<const Vec> b(params_.data() + l.b_off, l.out);
-      l.x = x;
+      // dW needs this input in backward. A later layer's input is the previous layer's output,
+      // which stays put until the next forward; only the first layer's (the caller's) is copied.
+      if (&l == &layers_.front()) l.x = x;
       l.y.resize(l.out, batch);
       l.y.noalias() = W * x;
       l.y.colwise() += b;
@@ -147,7 +149,8 @@ void Mlp::backward_layer(Layer& l, const ConstMatRef& dy, bool param_grads) {
       if (param_grads) {
         Eigen::Map<Mat> dW(grads_.data() + l.w_off, l.out, l.in);
         Eigen::Map<Vec> db(grads_.data() + l.b_off, l.out);
-        dW.noalias() += dy * l.x.transpose();
+        const Mat& x = &l == &layers_.front() ? l.x : (&l - 1)->y;  // the input of the last forward
+        dW.noalias() += dy * x.transpose();
         db += dy.rowwise().sum();
       }
       l.dx.resize(l.in, dy.cols());

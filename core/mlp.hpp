@@ -72,7 +72,7 @@ class Mlp {
     LayerKind kind;
     int in = 0, out = 0;
     int w_off = 0, b_off = 0;  // Linear: W (out×in), b (out). LayerNorm: gain, shift (out each).
-    Mat x;       // input of the last forward (Linear needs it for dW)
+    Mat x;       // first layer only: the caller's input of the last forward (Linear needs it for dW)
     Mat y;       // output of the last forward
     Mat dx;      // dL/d(input) of the last backward
     Mat xhat;    // LayerNorm: normalised input

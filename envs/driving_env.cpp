@@ -129,6 +129,16 @@ StepResult DrivingEnv::step(const ConstVecRef& action, VecRef obs) {
   return r;
 }
 
+void DrivingEnv::advance_traffic_only(int sumo_steps) {
+  session_.require_active();
+  episode_over_ = true;
+  try {
+    for (int i = 0; i < sumo_steps; ++i) Simulation::step();
+  } catch (...) {
+    rethrow_with_context("scenario '" + config_.scenario + "': advance_traffic_only");
+  }
+}
+
 void DrivingEnv::read_state() {
   ego_.speed = Vehicle::getSpeed(kEgo);
   road_id_ = Vehicle::getRoadID(kEgo);

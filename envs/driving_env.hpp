@@ -66,6 +66,13 @@ class DrivingEnv : public Env {
   StepResult step(const ConstVecRef& action, VecRef obs) override;
   void set_builtin_driver(bool on) override { builtin_ = on; }
 
+  // Advances the running simulation by `sumo_steps` SUMO steps and nothing else: no ego command,
+  // no state read, no observation or reward. This is the raw cost of the network and traffic the
+  // env wraps, the baseline `rapid bench` holds step() against (reset with the built-in driver
+  // first, so SUMO drives the ego as one more vehicle). It ends the episode: reset() before the
+  // next step().
+  void advance_traffic_only(int sumo_steps);
+
   // What the env read from SUMO at the end of the last decision (also for tests).
   struct Neighbor {
     bool present = false;

@@ -19,5 +19,6 @@ Command add_sweep_command(CLI::App& parent);
 Command add_status_command(CLI::App& parent);
 Command add_summarize_command(CLI::App& parent);
 Command add_diff_command(CLI::App& parent);
+Command add_bench_command(CLI::App& parent);
 
 }  // namespace rapid

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
       rapid::add_status_command(app),
       rapid::add_summarize_command(app),
       rapid::add_diff_command(app),
+      rapid::add_bench_command(app),
   };
 
   try {

@@ -14,8 +14,17 @@ void __libc_free(void*);
 namespace {
 std::atomic<bool> counting{false};
 std::atomic<std::size_t> count{0};
+std::atomic<rapid::test::AllocationHook> hook{nullptr};
+thread_local bool in_hook = false;
+
 inline void note() {
-  if (counting.load(std::memory_order_relaxed)) count.fetch_add(1, std::memory_order_relaxed);
+  if (!counting.load(std::memory_order_relaxed) || in_hook) return;
+  count.fetch_add(1, std::memory_order_relaxed);
+  if (const auto h = hook.load(std::memory_order_relaxed)) {
+    in_hook = true;
+    h();
+    in_hook = false;
+  }
 }
 }  // namespace
 
@@ -57,4 +66,5 @@ std::size_t stop_counting_allocations() {
   counting = false;
   return count.load();
 }
+void set_allocation_hook(AllocationHook h) { hook = h; }
 }  // namespace rapid::test

@@ -11,4 +11,9 @@ void start_counting_allocations();
 // Stops counting and returns the number of allocations since start.
 std::size_t stop_counting_allocations();
 
+// Called after each counted allocation, e.g. to classify it by its call stack. Allocations made
+// inside the hook itself are neither counted nor passed to it. nullptr removes the hook.
+using AllocationHook = void (*)();
+void set_allocation_hook(AllocationHook hook);
+
 }  // namespace rapid::test

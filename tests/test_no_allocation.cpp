@@ -1,7 +1,10 @@
 // Hot paths allocate nothing once warm: a network step at a fixed batch size, an Adam step,
-// a replay insertion and a minibatch draw.
+// a replay insertion and a minibatch draw, a full gradient update of every algorithm and acting.
+// (An env decision's allocations are counted in tests/perf/test_env_allocation.cpp, which needs
+// an allocator that tells libsumo's own allocations apart.)
 #include <gtest/gtest.h>
 
+#include "algos/registry.hpp"
 #include "core/adam.hpp"
 #include "core/mlp.hpp"
 #include "core/replay_buffer.hpp"
@@ -45,6 +48,59 @@ TEST(NoAllocation, ReplayInsertAndSample) {
   }
   EXPECT_EQ(test::stop_counting_allocations(), 0u);
 }
+
+TEST(NoAllocation, ReplayInsertionWrapsAroundWithoutAllocating) {
+  ReplayBuffer buffer(18, 2, 64);
+  const Vec s = Vec::Random(18), a = Vec::Random(2);
+  buffer.add(s, a, 0.0f, s, false, false);
+  test::start_counting_allocations();
+  for (int i = 0; i < 200; ++i) buffer.add(s, a, 0.1f * i, s, i % 5 == 0, i % 7 == 0);
+  EXPECT_EQ(test::stop_counting_allocations(), 0u);
+  EXPECT_EQ(buffer.size(), 64u);
+}
+
+// One full ActorCritic::update (actor step, critic step, both Polyak updates) per algorithm, at the
+// driving scenarios' default sizes (experiments/configs: 128-128, batch 128; 18 observations).
+class UpdateAllocation : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(UpdateAllocation, GradientUpdateAllocatesNothingAfterWarmUp) {
+  const int obs_dim = 18, act_dim = 2;
+  AgentConfig config;
+  config.actor_hidden = config.critic_hidden = {128, 128};
+  config.batch_size = 128;
+  config.epsilon = 0.0f;
+  auto agent = make_agent(GetParam(), obs_dim, act_dim, config, 5);
+  ReplayBuffer prior(obs_dim, act_dim, 512), online(obs_dim, act_dim, 512);
+  Rng data_rng(6);
+  for (int i = 0; i < 300; ++i) {
+    const Vec s = Vec::Random(obs_dim), a = Vec::Random(act_dim), s2 = Vec::Random(obs_dim);
+    const float r = static_cast<float>(data_rng.uniform(-1.0, 1.0));
+    prior.add(s, a, r, s2, i % 17 == 0, false);
+    online.add(s, a, -r, s2, false, i % 13 == 0);
+  }
+  SymmetricSampler sampler(agent->uses_prior() ? &prior : nullptr, &online);
+  Batch batch;
+  batch.resize(obs_dim, act_dim, config.batch_size);
+  Rng rng(7);
+  const Vec obs = Vec::Random(obs_dim);
+  auto train_step = [&] {
+    sampler.sample(rng, batch);
+    agent->update(batch);
+    agent->act(obs);  // the trainer acts between updates (syncs the acting copy of the actor)
+  };
+  train_step();  // sizes every buffer
+  test::start_counting_allocations();
+  for (int i = 0; i < 3; ++i) train_step();
+  EXPECT_EQ(test::stop_counting_allocations(), 0u) << GetParam();
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryAlgorithm, UpdateAllocation, ::testing::ValuesIn(algo_names()),
+                         [](const auto& info) {
+                           std::string name = info.param;
+                           for (char& c : name)
+                             if (c == '-') c = '_';
+                           return name;
+                         });
 
 // The counter itself must see allocations, or the tests above prove nothing.
 TEST(NoAllocation, CounterSeesAllocations) {

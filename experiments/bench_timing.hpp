@@ -1,0 +1,30 @@
+// Small timing helpers shared by the `rapid bench` measurements. The machines are shared and
+// noisy, so every reported number is a median over repeats, and compared quantities are measured
+// interleaved in the same run (see bench_env.cpp, bench_update.cpp).
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+namespace rapid::bench {
+
+using Clock = std::chrono::steady_clock;
+
+inline double seconds_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+inline double seconds_since(Clock::time_point t0) { return seconds_between(t0, Clock::now()); }
+
+// Median of `v` (0 for an empty vector); takes a copy because it reorders.
+inline double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  const std::size_t mid = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
+  const double upper = v[mid];
+  if (v.size() % 2 == 1) return upper;
+  return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid)));
+}
+
+}  // namespace rapid::bench
