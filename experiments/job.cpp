@@ -8,6 +8,7 @@
 #include "core/dataset.hpp"
 #include "core/dataset_io.hpp"
 #include "envs/env.hpp"
+#include "experiments/json_numbers.hpp"
 #include "experiments/provenance.hpp"
 #include "experiments/trainer.hpp"
 
@@ -39,9 +40,6 @@ nlohmann::json resolve_config(const std::string& scenario, const nlohmann::json&
 
 namespace {
 
-// null for NaN/inf, which JSON cannot hold (bc_prior without a prior buffer).
-nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
-
 nlohmann::json log_to_json(const TrainLog& log, nlohmann::json& record) {
   record["eval"] = nlohmann::json::array();
   for (const EvalPoint& e : log.eval)
@@ -54,9 +52,9 @@ nlohmann::json log_to_json(const TrainLog& log, nlohmann::json& record) {
   record["bc_loss"] = nlohmann::json::array();
   record["losses"] = nlohmann::json::array();
   for (const LossPoint& p : log.losses) {
-    record["bc_loss"].push_back({{"step", p.step}, {"prior", number_or_null(p.bc_prior)}, {"online", number_or_null(p.bc_online)}});
-    record["losses"].push_back({{"step", p.step}, {"critic", number_or_null(p.critic_loss)},
-                                {"actor", number_or_null(p.actor_loss)}, {"q_mean", number_or_null(p.q_mean)}});
+    record["bc_loss"].push_back({{"step", p.step}, {"prior", json_number(p.bc_prior)}, {"online", json_number(p.bc_online)}});
+    record["losses"].push_back({{"step", p.step}, {"critic", json_number(p.critic_loss)},
+                                {"actor", json_number(p.actor_loss)}, {"q_mean", json_number(p.q_mean)}});
   }
   return record;
 }

@@ -5,17 +5,11 @@
 #include <map>
 #include <optional>
 
+#include "experiments/json_numbers.hpp"
+
 namespace rapid {
 
 namespace {
-
-nlohmann::json number(std::optional<double> x) {
-  return x && std::isfinite(*x) ? nlohmann::json(*x) : nlohmann::json(nullptr);
-}
-
-nlohmann::json interval(const std::optional<Interval>& i) {
-  return i ? nlohmann::json::array({i->lo, i->hi}) : nlohmann::json(nullptr);
-}
 
 // The comparable part of a cell, from either side.
 struct CellNumbers {
@@ -84,18 +78,18 @@ nlohmann::json make_baseline(const Summary& s) {
   for (const CellSummary& c : s.cells) {
     nlohmann::json finals = nlohmann::json::array();
     for (const SeedResult& r : c.seeds)
-      finals.push_back({{"seed", r.seed}, {"status", r.status}, {"final", number(r.final_return)}});
+      finals.push_back({{"seed", r.seed}, {"status", r.status}, {"final", json_number(r.final_return)}});
     cells.push_back({{"cell", c.key()},
                      {"scenario", c.scenario},
                      {"dataset", c.dataset.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.dataset)},
                      {"algo", c.algo},
                      {"n_ok", c.n_ok},
                      {"n_expected", c.n_expected},
-                     {"mean", number(c.mean)},
-                     {"std", number(c.std)},
-                     {"mean_ci", interval(c.mean_ci)},
-                     {"iqm", number(c.iqm)},
-                     {"iqm_ci", interval(c.iqm_ci)},
+                     {"mean", json_number(c.mean)},
+                     {"std", json_number(c.std)},
+                     {"mean_ci", json_interval(c.mean_ci)},
+                     {"iqm", json_number(c.iqm)},
+                     {"iqm_ci", json_interval(c.iqm_ci)},
                      {"finals", finals}});
   }
   return {{"schema", kBaselineSchema},

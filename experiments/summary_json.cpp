@@ -3,17 +3,11 @@
 
 #include "experiments/summary.hpp"
 
+#include "experiments/json_numbers.hpp"
+
 namespace rapid {
 
 namespace {
-
-nlohmann::json number(std::optional<double> x) {
-  return x && std::isfinite(*x) ? nlohmann::json(*x) : nlohmann::json(nullptr);
-}
-
-nlohmann::json interval(const std::optional<Interval>& i) {
-  return i ? nlohmann::json::array({i->lo, i->hi}) : nlohmann::json(nullptr);
-}
 
 nlohmann::json dataset_name(const std::string& d) { return d.empty() ? nlohmann::json(nullptr) : nlohmann::json(d); }
 
@@ -24,7 +18,7 @@ nlohmann::json curve_json(const MeanCurve& c) {
 nlohmann::json cell_json(const CellSummary& c) {
   nlohmann::json seeds = nlohmann::json::array();
   for (const SeedResult& r : c.seeds)
-    seeds.push_back({{"seed", r.seed}, {"status", r.status}, {"final", number(r.final_return)},
+    seeds.push_back({{"seed", r.seed}, {"status", r.status}, {"final", json_number(r.final_return)},
                      {"error", r.error.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.error)}});
   return {{"scenario", c.scenario},
           {"dataset", dataset_name(c.dataset)},
@@ -34,12 +28,12 @@ nlohmann::json cell_json(const CellSummary& c) {
           {"statuses", c.statuses},
           {"seeds", seeds},
           {"finals", c.finals},
-          {"mean", number(c.mean)},
-          {"std", number(c.std)},
-          {"mean_ci", interval(c.mean_ci)},
-          {"iqm", number(c.iqm)},
-          {"iqm_ci", interval(c.iqm_ci)},
-          {"eval_auc", number(c.eval_auc)},
+          {"mean", json_number(c.mean)},
+          {"std", json_number(c.std)},
+          {"mean_ci", json_interval(c.mean_ci)},
+          {"iqm", json_number(c.iqm)},
+          {"iqm_ci", json_interval(c.iqm_ci)},
+          {"eval_auc", json_number(c.eval_auc)},
           {"eval_curve", curve_json(c.eval)},
           {"bc_prior_curve", curve_json(c.bc_prior)},
           {"bc_online_curve", curve_json(c.bc_online)}};
@@ -85,7 +79,7 @@ nlohmann::json summary_to_json(const Summary& s) {
   j["probability_of_improvement"] = nlohmann::json::array();
   for (const PoiEntry& p : s.poi)
     j["probability_of_improvement"].push_back({{"scenario", p.scenario}, {"dataset", p.dataset}, {"algo", "rapid-rl"},
-                                               {"baseline", p.baseline}, {"p", number(p.p)}, {"ci", interval(p.ci)},
+                                               {"baseline", p.baseline}, {"p", json_number(p.p)}, {"ci", json_interval(p.ci)},
                                                {"n_x", p.n_x}, {"n_y", p.n_y}});
   j["aggregate_iqm"] = nlohmann::json::array();
   for (const AggregateEntry& a : s.aggregate)
