@@ -4,16 +4,15 @@
 
 #include <csignal>
 #include <ctime>
-#include <fstream>
 
 #include "experiments/job.hpp"
 #include "experiments/provenance.hpp"
+#include "experiments/sweep_attempt.hpp"
 #include "experiments/sweep_pool.hpp"
 #include "experiments/sweep_progress.hpp"
 
 namespace rapid {
 
-namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 namespace {
@@ -34,11 +33,6 @@ struct JobRun {
 };
 
 bool unsuccessful(Phase p) { return p == Phase::kFailed || p == Phase::kDiverged || p == Phase::kBlocked; }
-
-std::string signal_name(int sig) {
-  const char* abbrev = sigabbrev_np(sig);
-  return abbrev ? std::string("SIG") + abbrev : "signal " + std::to_string(sig);
-}
 
 class LocalRunner {
  public:
@@ -171,16 +165,9 @@ class LocalRunner {
   void launch(std::size_t i) {
     const SweepJob& job = folder_.graph.jobs[i];
     JobRun& r = runs_[i];
-    fs::create_directories(folder_.path(job.dir));
-    if (job.kind == JobKind::kCell) fs::remove(folder_.path(job_progress_path(job)));  // a stale one would mislead
-    const std::vector<std::string> args = job_arguments(job);
-    {
-      std::ofstream log(folder_.path(job.dir + "/" + sweep_files::kLog), std::ios::app);
-      log << "==== rapid sweep: " << job.id() << ", attempt " << r.attempts + 1 << ", " << utc_now_iso8601() << ": rapid";
-      for (const auto& a : args) log << " " << a;
-      log << "\n";
-    }
-    r.pid = pool_.start(options_.binary, args, folder_.dir, folder_.path(job.dir + "/" + sweep_files::kLog));
+    begin_attempt(folder_, job, r.attempts + 1);
+    r.pid = pool_.start(options_.binary, job_arguments(job), folder_.dir,
+                        folder_.path(job.dir + "/" + sweep_files::kLog));
     r.phase = Phase::kRunning;
     r.started = Clock::now();
     r.started_wall = std::time(nullptr);
@@ -207,76 +194,40 @@ class LocalRunner {
     const double took = seconds_since(r.started);
     finished_units_ += r.units;
 
-    if (e.exit_code == 0) {
-      const std::string problem = check_success(i);
-      if (problem.empty()) {
-        r.phase = Phase::kOk;
-        r.error.clear();
-        Outcome o;
-        o.state = "ok";
-        o.attempts = r.attempts;
-        o.exit_code = 0;
-        if (job.kind == JobKind::kCell) write_outcome(folder_, job, o);
-        else mark_dataset_stage_done(folder_, job, r.attempts);
-        display_->event("ok       " + job.id() + " (" + format_duration(took) + ")", snapshot());
-        return;
-      }
-      return failed_attempt(i, e, problem, /*retryable=*/true);
-    }
-    if (job.kind == JobKind::kCell && e.signal) fs::remove(folder_.path(job_progress_path(job)));
+    if (e.signal) discard_progress(folder_, job);
     if (e.signal && pool_.interruption()) {  // stopped by us: neither a failure nor an attempt
       --r.attempts;
       r.phase = Phase::kNotRun;
       display_->event("stopped  " + job.id(), snapshot());
       return;
     }
-    if (e.signal) return failed_attempt(i, e, "killed by " + signal_name(e.signal), true);
-    if (e.exit_code == 2) return failed_attempt(i, e, "usage error: " + last_log_line(folder_, job), false);
-    if (e.exit_code == 1 && job.kind == JobKind::kCell) {
-      const auto record = read_json_file(folder_.path(job_marker_path(job)));
-      if (record && record->value("config_hash", "") == r.expected_hash) {
-        const std::string error = record->contains("error") && (*record)["error"].is_string()
-                                      ? (*record)["error"].get<std::string>()
-                                      : last_log_line(folder_, job);
-        // Training is deterministic: a diverged run diverges again, so it is not retried.
-        if (record->value("status", "") == "diverged") return failed_attempt(i, e, error, false, Phase::kDiverged);
-        return failed_attempt(i, e, error, true);
-      }
+    const AttemptVerdict verdict = judge_attempt(folder_, job, r.expected_hash, e.exit_code, e.signal);
+    if (verdict.state == "ok") {
+      r.phase = Phase::kOk;
+      r.error.clear();
+      record_outcome(folder_, job, verdict, r.attempts, e.exit_code, e.signal);
+      display_->event("ok       " + job.id() + " (" + format_duration(took) + ")", snapshot());
+      return;
     }
-    failed_attempt(i, e, "exit code " + std::to_string(e.exit_code) + ": " + last_log_line(folder_, job), true);
+    failed_attempt(i, e, verdict);
   }
 
-  // "" when the job's marker confirms the success its exit code claims.
-  std::string check_success(std::size_t i) const {
-    const SweepJob& job = folder_.graph.jobs[i];
-    const auto marker = read_json_file(folder_.path(job_marker_path(job)));
-    if (!marker || marker->value("status", "") != "ok") return "exited 0 but " + job_marker_path(job) + " does not say ok";
-    if (job.kind == JobKind::kCell && marker->value("config_hash", "") != runs_[i].expected_hash)
-      return "exited 0 but its record's config_hash is not the one the grid asks for";
-    return "";
-  }
-
-  void failed_attempt(std::size_t i, const ChildExit& e, const std::string& error, bool retryable,
-                      Phase final_phase = Phase::kFailed) {
+  void failed_attempt(std::size_t i, const ChildExit& e, const AttemptVerdict& verdict) {
     const SweepJob& job = folder_.graph.jobs[i];
     JobRun& r = runs_[i];
-    r.error = error;
+    r.error = verdict.error;
     const int max_attempts = 1 + folder_.grid.max_retries;
-    if (retryable && r.attempts < max_attempts) {
+    if (verdict.retryable && r.attempts < max_attempts) {
       r.phase = Phase::kReady;
       display_->event("retry    " + job.id() + " after attempt " + std::to_string(r.attempts) + "/" +
-                          std::to_string(max_attempts) + ": " + error,
+                          std::to_string(max_attempts) + ": " + verdict.error,
                       snapshot());
       return;
     }
+    const Phase final_phase = verdict.state == "diverged" ? Phase::kDiverged : Phase::kFailed;
     r.phase = final_phase;
-    Outcome o;
-    o.state = final_phase == Phase::kDiverged ? "diverged" : "failed";
-    o.attempts = r.attempts;
-    o.exit_code = e.exit_code;
-    o.signal = e.signal;
-    o.error = error;
-    write_outcome(folder_, job, o);
+    record_outcome(folder_, job, verdict, r.attempts, e.exit_code, e.signal);
+    const std::string& error = verdict.error;
     display_->event((final_phase == Phase::kDiverged ? "diverged " : "failed   ") + job.id() + " after " +
                         std::to_string(r.attempts) + " attempt" + (r.attempts == 1 ? "" : "s") + ": " + error,
                     snapshot());

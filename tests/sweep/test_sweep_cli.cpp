@@ -76,7 +76,7 @@ TEST(SweepCli, InvalidJsonMissingFileBadOptionsAndBadStatusFolder) {
   const std::vector<Case> cases = {
       {"sweep " + (dir.path() / "broken.json").string() + tail, "not valid JSON"},
       {"sweep " + (dir.path() / "missing.json").string() + tail, "cannot read the file"},
-      {"sweep " + good.string() + " --backend slurm" + tail, "--backend: 'slurm' is not available"},
+      {"sweep " + good.string() + " --backend pbs" + tail, "--backend: 'pbs' is not available; expected local or slurm"},
       {"sweep " + good.string() + " --only colour=red" + tail, "--only: unknown key 'colour'"},
       {"sweep " + good.string() + " --only algo=sac" + tail, "--only: algo 'sac' is not in the grid"},
       {"sweep " + good.string() + " --only seed=3" + tail, "--only: seed 3 is not in the grid's seeds"},

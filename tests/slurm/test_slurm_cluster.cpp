@@ -1,0 +1,158 @@
+// Whole sweeps through a real Slurm (issue 8). Skipped unless RAPID_SLURM_TESTS=1 and `sinfo`
+// answers: scripts/test-slurm starts a throwaway single-node Slurm (scripts/slurm-local), runs
+// these and stops it.
+//  - The smoke grid (or $RAPID_SLURM_TEST_GRID) gives the same records and datasets through
+//    Slurm as through the local backend, and `rapid status` sees every job ok from the files.
+//  - A task that fails shows in `rapid status` (with its retries) and runs again, alone, on the
+//    next submission.
+//  - A failed reference agent stops the later arrays (afterok); status shows the failure and the
+//    blocked jobs, and the next submission runs everything that is left.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+
+#include "core/dataset_io.hpp"
+#include "tests/datasets/dataset_fixtures.hpp"
+#include "tests/slurm/slurm_test_util.hpp"
+#include "tests/sweep/sweep_test_util.hpp"
+
+namespace rapid {
+namespace {
+
+using namespace sweep_test;
+using namespace slurm_test;
+using nlohmann::json;
+
+constexpr double kTimeoutS = 900;
+
+class SlurmCluster : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string why;
+    if (!slurm_available(why)) GTEST_SKIP() << why;
+  }
+  // Submits and waits for the arrays to leave the queue; returns the output of the submission.
+  Result submit_and_wait(const fs::path& grid, const fs::path& out, const std::string& extra = "") {
+    const Result r = run_rapid("sweep " + grid.string() + " --backend slurm --array-parallelism 2 --out " + out.string() +
+                               " " + extra);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_TRUE(wait_for_jobs(submitted_ids(r.output), kTimeoutS)) << "the arrays did not finish in time\n" << r.output;
+    return r;
+  }
+  json status(const fs::path& sweep) {
+    const Result r = run_rapid("status --json " + sweep.string());
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return json::parse(r.output);
+  }
+  static std::string slurp(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }
+  // The task output of the first task of the array a submission printed for `stage`.
+  static std::string task_output(const fs::path& sweep, const std::string& stage, const Result& submission) {
+    const auto at = submission.output.find("  " + stage + ": job ");
+    if (at == std::string::npos) return "";
+    const std::string id = submission.output.substr(at + stage.size() + 8, submission.output.find(',', at) - at - stage.size() - 8);
+    return slurp(sweep / "slurm" / (stage + "_" + id + "_0.out"));
+  }
+
+  testing::ScratchDir dir_;
+};
+
+TEST_F(SlurmCluster, GridRecordsEqualTheLocalBackends) {
+  const char* env = std::getenv("RAPID_SLURM_TEST_GRID");
+  const fs::path grid = env && *env ? fs::path(env) : fs::path(RAPID_SOURCE_DIR) / "experiments/grids/smoke.json";
+  const fs::path local = dir_.path() / "local", slurm = dir_.path() / "slurm";
+
+  const Result l = run_rapid("sweep " + grid.string() + " --jobs 2 --out " + local.string());
+  ASSERT_EQ(l.exit_code, 0) << l.output;
+  const Result s = submit_and_wait(grid, slurm);
+
+  const json st = status(slurm);
+  EXPECT_EQ(st["counts"]["ok"], st["jobs"].size()) << st.dump(1);
+  const auto local_records = comparable_run_records(local, slurm);
+  const auto slurm_records = comparable_run_records(slurm, local);
+  ASSERT_FALSE(local_records.empty());
+  EXPECT_EQ(slurm_records.size(), local_records.size());
+  for (const auto& [path, record] : local_records) {
+    ASSERT_TRUE(slurm_records.count(path)) << path;
+    EXPECT_EQ(slurm_records.at(path), record) << path;
+  }
+  const auto datasets = dataset_files(local);
+  EXPECT_EQ(dataset_files(slurm), datasets);
+  for (const auto& file : datasets)
+    EXPECT_TRUE(testing::bit_identical(read_dataset((local / file).string()), read_dataset((slurm / file).string())))
+        << file;
+  for (const json& job : st["jobs"]) {
+    const json outcome = read_json(slurm / job["dir"].get<std::string>() / "outcome.json");
+    EXPECT_EQ(outcome["state"], "ok") << job["job"];
+    EXPECT_EQ(outcome["attempts"], 1) << job["job"];
+  }
+  EXPECT_NE(task_output(slurm, "cells", s).find("rapid sweep task: ok "), std::string::npos);
+
+  const Result again = run_rapid("sweep " + grid.string() + " --backend slurm --out " + slurm.string());
+  EXPECT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("nothing to submit"), std::string::npos) << again.output;
+}
+
+TEST_F(SlurmCluster, AFailedTaskShowsInStatusAndRunsAgainOnTheNextSubmission) {
+  json g = pendulum_grid("fails", {"rapid-rl", "ddpg"}, {0, 1}, 400);
+  g["max_retries"] = 1;
+  const fs::path grid = dir_.path() / "fails.json", sweep = dir_.path() / "sweep";
+  write_json(grid, g);
+  submit_and_wait(grid, sweep);
+  ASSERT_EQ(status(sweep)["counts"]["ok"], 6);
+
+  // A corrupt dataset: the selected cell fails inside `rapid run`, twice (max_retries 1).
+  const fs::path dataset = sweep / "datasets/pendulum/initial.h5";
+  const std::string good = slurp(dataset);
+  std::ofstream(dataset, std::ios::trunc) << "not an HDF5 file";
+  const Result failing = submit_and_wait(grid, sweep, "--only algo=rapid-rl,seed=0");
+  EXPECT_NE(task_output(sweep, "cells", failing).find("failed pendulum/initial/rapid-rl/seed0 after 2 attempts"),
+            std::string::npos);
+  std::ofstream(dataset, std::ios::trunc | std::ios::binary) << good;
+
+  json st = status(sweep);
+  EXPECT_EQ(st["counts"]["failed"], 1) << st.dump(1);
+  EXPECT_EQ(st["counts"]["ok"], 5) << st.dump(1);
+  EXPECT_EQ(read_json(sweep / "jobs/pendulum/initial/rapid-rl/seed0/outcome.json")["attempts"], 2);
+  const Result text = run_rapid("status " + sweep.string());
+  EXPECT_NE(text.output.find("failed jobs:\n  pendulum/initial/rapid-rl/seed0: failed: "), std::string::npos) << text.output;
+
+  const auto before = record_identities(sweep);
+  const Result rerun = submit_and_wait(grid, sweep);
+  EXPECT_NE(rerun.output.find("submitted 1 job to Slurm (5 already done)"), std::string::npos) << rerun.output;
+  EXPECT_EQ(status(sweep)["counts"]["ok"], 6);
+  const auto after = record_identities(sweep);
+  for (const auto& [path, identity] : before) {
+    if (path == "jobs/pendulum/initial/rapid-rl/seed0") continue;
+    EXPECT_EQ(after.at(path), identity) << path;
+  }
+  EXPECT_NE(after.at("jobs/pendulum/initial/rapid-rl/seed0"), before.at("jobs/pendulum/initial/rapid-rl/seed0"));
+}
+
+TEST_F(SlurmCluster, AFailedReferenceStopsTheLaterArraysUntilTheNextSubmission) {
+  json g = pendulum_grid("blocked", {"rapid-rl", "ddpg"}, {0}, 400);
+  g["max_retries"] = 0;
+  const fs::path grid = dir_.path() / "blocked.json", sweep = dir_.path() / "sweep";
+  write_json(grid, g);
+  // A file where the scenario's dataset folder belongs: the reference agent cannot be saved.
+  fs::create_directories(sweep / "datasets");
+  std::ofstream(sweep / "datasets/pendulum") << "in the way";
+  const Result first = submit_and_wait(grid, sweep);
+  ASSERT_EQ(submitted_ids(first.output).size(), 3u) << first.output;
+
+  const json st = status(sweep);
+  EXPECT_EQ(st["counts"]["failed"], 1) << st.dump(1);   // the reference
+  EXPECT_EQ(st["counts"]["blocked"], 2) << st.dump(1);  // the dataset job and the rapid-rl cell
+  EXPECT_EQ(st["counts"]["pending"], 1) << st.dump(1);  // ddpg: its array was cancelled (afterok)
+  EXPECT_FALSE(fs::exists(sweep / "jobs/pendulum/none/ddpg/seed0/record.json"));
+
+  fs::remove(sweep / "datasets/pendulum");
+  submit_and_wait(grid, sweep);
+  EXPECT_EQ(status(sweep)["counts"]["ok"], 4) << status(sweep).dump(1);
+}
+
+}  // namespace
+}  // namespace rapid
