@@ -56,7 +56,10 @@ bool sweep_lock_held(const std::filesystem::path& sweep_dir) {
   const std::string path = (sweep_dir / sweep_files::kLock).string();
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) return false;
-  const bool held = ::flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
+  // Probe with an exclusive lock: it conflicts both with a runner's exclusive lock and with the
+  // shared locks Slurm array tasks hold. (A sweep starting within the microseconds the probe holds
+  // it would be told the folder is busy; rerunning it is the remedy, as for any busy folder.)
+  const bool held = ::flock(fd, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK;
   ::close(fd);
   return held;
 }
