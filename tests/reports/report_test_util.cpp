@@ -90,4 +90,17 @@ std::string read_text(const fs::path& path) {
 
 nlohmann::json read_json(const fs::path& path) { return nlohmann::json::parse(read_text(path)); }
 
+FakeRun pendulum_run(const std::string& dataset, const std::string& algo, std::uint64_t seed, double final,
+                     const std::string& status) {
+  FakeRun r;
+  r.scenario = "pendulum";
+  r.dataset = dataset;
+  r.algo = algo;
+  r.seed = seed;
+  r.final_return = final;
+  r.status = status;
+  r.eval = {{0, 0.0}, {500, final / 2}, {1000, final}};
+  return r;
+}
+
 }  // namespace rapid::report_test

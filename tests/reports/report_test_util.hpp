@@ -29,6 +29,11 @@ struct FakeRun {
   double epsilon = -0.5;
 };
 
+// A pendulum run whose evaluation curve rises linearly to `final` (0, final/2, final at steps 0,
+// 500, 1000); the caller adds BC-loss points if it needs them.
+FakeRun pendulum_run(const std::string& dataset, const std::string& algo, std::uint64_t seed, double final,
+                     const std::string& status = "ok");
+
 // A grid document with small budgets; the scenarios, datasets, algos and seeds given.
 nlohmann::json make_grid(const std::string& name, const std::vector<std::string>& scenarios,
                          const std::vector<std::string>& datasets, const std::vector<std::string>& algos,

@@ -29,14 +29,7 @@ class ReportCliTest : public ::testing::Test {
   }
   void run(const std::string& dataset, const std::string& algo, std::uint64_t seed, double final,
            const std::string& status = "ok") {
-    FakeRun r;
-    r.scenario = "pendulum";
-    r.dataset = dataset;
-    r.algo = algo;
-    r.seed = seed;
-    r.final_return = final;
-    r.status = status;
-    r.eval = {{0, 0.0}, {500, final / 2}, {1000, final}};
+    FakeRun r = report_test::pendulum_run(dataset, algo, seed, final, status);
     r.bc = {{0, 0.1, 0.5}, {500, 0.2, 0.4}};
     report_test::write_run(sweep, r);
   }
