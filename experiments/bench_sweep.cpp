@@ -32,8 +32,9 @@ nlohmann::json pendulum_grid(const SweepBenchOptions& o) {
 
 // Wall time of one `rapid sweep` with `workers` workers into a fresh folder; throws if it fails.
 double time_sweep(const fs::path& self, const fs::path& grid, const fs::path& out, int workers) {
+  // --no-summary: the reports at the end of a sweep are a fixed cost, not job throughput.
   const std::string cmd = "'" + self.string() + "' sweep '" + grid.string() + "' --jobs " + std::to_string(workers) +
-                          " --out '" + out.string() + "' > '" + out.string() + ".log' 2>&1";
+                          " --no-summary --out '" + out.string() + "' > '" + out.string() + ".log' 2>&1";
   const auto t0 = Clock::now();
   const int rc = std::system(cmd.c_str());
   const double s = seconds_since(t0);
