@@ -9,6 +9,7 @@
 
 #include "algos/registry.hpp"
 #include "envs/env.hpp"
+#include "experiments/job.hpp"
 #include "experiments/run_config.hpp"
 
 namespace rapid {
@@ -181,11 +182,6 @@ void check_overrides(const GridChecker& check, const Grid& grid) {
 
 }  // namespace
 
-const std::vector<std::string>& grid_dataset_names() {
-  static const std::vector<std::string> names = {"initial", "medium", "final", "final+medium"};
-  return names;
-}
-
 Grid parse_grid(const json& doc, const std::string& label) {
   const GridChecker check(label);
   if (!doc.is_object()) check.fail("(top level)", "expected a JSON object");
@@ -197,7 +193,7 @@ Grid parse_grid(const json& doc, const std::string& label) {
     grid.description = doc["description"].get<std::string>();
   }
   grid.scenarios = check.name_axis(doc, "scenarios", env_names(), "scenario");
-  grid.datasets = check.name_axis(doc, "datasets", grid_dataset_names(), "dataset");
+  grid.datasets = check.name_axis(doc, "datasets", dataset_names(), "dataset");
   grid.algos = check.name_axis(doc, "algos", algo_names(), "algorithm");
   grid.seeds = check.seed_axis(doc);
   grid.config = check.object_or_empty(doc, "config");

@@ -47,8 +47,6 @@ struct Grid {
   nlohmann::json normalized;
 };
 
-// The dataset names a grid may use, in table order.
-const std::vector<std::string>& grid_dataset_names();
 
 // Reads and validates a grid file. Throws std::invalid_argument with one line
 // "grid PATH: FIELD: problem" (e.g. "grid quick.json: algos[2]: unknown algorithm 'sac'; …").

@@ -60,7 +60,7 @@ std::vector<std::string> ordered_algos(const Grid& grid) {
 
 std::vector<std::string> ordered_datasets(const Grid& grid) {
   std::vector<std::string> out;
-  for (const std::string& d : grid_dataset_names())
+  for (const std::string& d : dataset_names())
     if (std::find(grid.datasets.begin(), grid.datasets.end(), d) != grid.datasets.end()) out.push_back(d);
   return out;
 }
@@ -204,9 +204,9 @@ Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptio
     return std::find(order.begin(), order.end(), x) - order.begin();
   };
   std::stable_sort(s.cells.begin(), s.cells.end(), [&](const CellSummary& a, const CellSummary& b) {
-    const auto ka = std::tuple(rank(s.grid.scenarios, a.scenario), a.dataset.empty() ? 99 : rank(grid_dataset_names(), a.dataset),
+    const auto ka = std::tuple(rank(s.grid.scenarios, a.scenario), a.dataset.empty() ? 99 : rank(dataset_names(), a.dataset),
                                rank(table_algo_order(), a.algo));
-    const auto kb = std::tuple(rank(s.grid.scenarios, b.scenario), b.dataset.empty() ? 99 : rank(grid_dataset_names(), b.dataset),
+    const auto kb = std::tuple(rank(s.grid.scenarios, b.scenario), b.dataset.empty() ? 99 : rank(dataset_names(), b.dataset),
                                rank(table_algo_order(), b.algo));
     return ka < kb;
   });
