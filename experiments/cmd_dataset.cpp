@@ -19,6 +19,7 @@
 #include "experiments/grid.hpp"
 #include "experiments/job.hpp"
 #include "experiments/run_config.hpp"
+#include "experiments/summary_datasets.hpp"
 #include "envs/env.hpp"
 
 namespace rapid {
@@ -35,28 +36,15 @@ struct InfoOptions {
 };
 
 nlohmann::json info_json(const std::string& file, const Dataset& d, const DatasetStats& s) {
-  return {
-      {"file", file},
-      {"transitions", s.transitions},
-      {"episodes", s.episodes},
-      {"terminal_episodes", s.terminal_episodes},
-      {"episode_length_mean", s.episode_length_mean},
-      {"obs_dim", d.obs_dim()},
-      {"act_dim", d.act_dim()},
-      {"return_mean", s.return_mean},
-      {"return_std", s.return_std},
-      {"return_min", s.return_min},
-      {"return_max", s.return_max},
-      {"reward_mean", s.reward_mean},
-      {"reward_std", s.reward_std},
-      {"reward_min", s.reward_min},
-      {"reward_max", s.reward_max},
-      {"reward_histogram",
-       {{"edges", s.reward_histogram.edges},
-        {"counts", s.reward_histogram.counts},
-        {"outside", s.reward_histogram.outside}}},
-      {"metadata", d.metadata},
-  };
+  nlohmann::json j = dataset_stats_json(s);
+  j["file"] = file;
+  j["obs_dim"] = d.obs_dim();
+  j["act_dim"] = d.act_dim();
+  j["return_min"] = s.return_min;
+  j["return_max"] = s.return_max;
+  j["reward_histogram"]["outside"] = s.reward_histogram.outside;
+  j["metadata"] = d.metadata;
+  return j;
 }
 
 // A text bar chart: one line per bin, bar length relative to the fullest bin.

@@ -21,7 +21,9 @@ std::string dataset_file(const std::string& scenario, const std::string& dataset
   return cell_dataset_path(job);
 }
 
-nlohmann::json stats_json(const DatasetStats& s) {
+}  // namespace
+
+nlohmann::json dataset_stats_json(const DatasetStats& s) {
   return {{"transitions", s.transitions},
           {"episodes", s.episodes},
           {"terminal_episodes", s.terminal_episodes},
@@ -34,6 +36,8 @@ nlohmann::json stats_json(const DatasetStats& s) {
           {"reward_max", s.reward_max},
           {"reward_histogram", {{"edges", s.reward_histogram.edges}, {"counts", s.reward_histogram.counts}}}};
 }
+
+namespace {
 
 bool scenario_has_prior_cells(const Grid& grid) {
   return std::any_of(grid.algos.begin(), grid.algos.end(), [](const std::string& a) { return algo_uses_prior(a); });
@@ -71,7 +75,7 @@ std::vector<DatasetSummary> summarize_datasets(const SweepFolder& folder) {
       entries.push_back(std::move(entry));
     }
     for (std::size_t i = 0; i < entries.size(); ++i) {
-      if (data[i]) entries[i].stats = stats_json(dataset_stats_with_edges(*data[i], uniform_edges(lo, hi, kSummaryHistogramBins)));
+      if (data[i]) entries[i].stats = dataset_stats_json(dataset_stats_with_edges(*data[i], uniform_edges(lo, hi, kSummaryHistogramBins)));
       out.push_back(std::move(entries[i]));
     }
   }

@@ -6,12 +6,17 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "core/dataset_stats.hpp"
 #include "experiments/summary.hpp"
 #include "experiments/sweep_state.hpp"
 
 namespace rapid {
 
 inline constexpr int kSummaryHistogramBins = 40;
+
+// A dataset's statistics as JSON (transitions, episodes, return and reward moments, histogram):
+// the summary's per-dataset entry and the core of `rapid dataset info --json`.
+nlohmann::json dataset_stats_json(const DatasetStats& s);
 
 // One entry per scenario with prior cells × grid dataset; a missing or unreadable file is an
 // entry with present = false and the reason.
