@@ -44,15 +44,12 @@ int run_command(const RunOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--scenario: ") + e.what());
   }
-  const auto& algos = algo_names();
-  if (std::find(algos.begin(), algos.end(), o.algo) == algos.end()) {
-    try {
-      make_agent(o.algo, 1, 1, AgentConfig{}, 0);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("--algo: ") + e.what());
-    }
+  bool needs_prior = false;
+  try {
+    needs_prior = algo_uses_prior(o.algo);  // throws, naming the known ones, for an unknown algorithm
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--algo: ") + e.what());
   }
-  const bool needs_prior = algo_uses_prior(o.algo);
   if (needs_prior && o.dataset.empty()) throw UsageError("--dataset: algorithm '" + o.algo + "' needs a prior dataset");
   if (!needs_prior && !o.dataset.empty()) throw UsageError("--dataset: algorithm '" + o.algo + "' takes no dataset");
   spec.scenario = o.scenario;
