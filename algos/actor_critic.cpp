@@ -54,7 +54,7 @@ float ActorCritic::actor_objective(const Batch& batch, UpdateStats& stats) {
   const Mat& q = critic_.forward(critic_input(batch.obs, pi_));
   // −(1/B) Σ Q(s, π(s)): back-propagate through the critic into the action, not its weights.
   dq_.setConstant(1, b, -1.0f / static_cast<float>(b));
-  dpi_ = critic_.backward(dq_, /*param_grads=*/false).bottomRows(act_dim_);
+  dpi_ = critic_.backward(dq_, Grads::kInputOnly).bottomRows(act_dim_);
 
   // The imitation term (1/B) Σ w_i ‖π(s_i) − a_i‖², the only place the algorithms differ.
   bc_weights(batch, w_);
@@ -74,14 +74,14 @@ float ActorCritic::actor_loss(const Batch& batch) {
   UpdateStats stats;
   const float loss = actor_objective(batch, stats);
   actor_.zero_grad();
-  actor_.backward(dpi_);
+  actor_.backward(dpi_, Grads::kParamsOnly);
   return loss;
 }
 
 void ActorCritic::actor_step(const Batch& batch, UpdateStats& stats) {
   actor_objective(batch, stats);
   actor_.zero_grad();
-  actor_.backward(dpi_);
+  actor_.backward(dpi_, Grads::kParamsOnly);
   actor_opt_.step(actor_.params(), actor_.grads());
   acting_actor_stale_ = true;
 }
@@ -96,7 +96,7 @@ void ActorCritic::critic_step(const Batch& batch, UpdateStats& stats) {
   stats.q_mean = q.mean();
   dq_ *= 2.0f / static_cast<float>(b);
   critic_.zero_grad();
-  critic_.backward(dq_);
+  critic_.backward(dq_, Grads::kParamsOnly);
   critic_opt_.step(critic_.params(), critic_.grads());
 }
 

@@ -1,5 +1,6 @@
 #include "core/mlp.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -64,6 +65,7 @@ Mlp::Mlp(int input_dim, const std::vector<LayerSpec>& layers) : input_dim_(input
   output_dim_ = width;
   params_ = Vec::Zero(offset);
   grads_ = Vec::Zero(offset);
+  plan_buffers();
   for (Layer& l : layers_)
     if (l.kind == LayerKind::kLayerNorm) params_.segment(l.w_off, l.out).setOnes();
 }
@@ -98,37 +100,83 @@ void Mlp::init(Rng& rng, float final_scale) {
   }
 }
 
-void Mlp::forward_layer(Layer& l, const ConstMatRef& x) {
+void Mlp::plan_buffers() {
+  // May layer i+1 overwrite layer i's output? Only if layer i's backward does not read it: a
+  // Linear reads its input, LayerNorm its x̂, ReLU and Tanh their own output. The caller's x is
+  // never overwritten (it is const; the first layer works from a copy or its own buffer).
+  auto new_buffer = [this] {
+    acts_.emplace_back();
+    return static_cast<int>(acts_.size()) - 1;
+  };
+  int prev = kCallerInput;
+  bool prev_free = false;  // whether the buffer `prev` may be overwritten by the next layer
+  max_width_ = input_dim_;
+  for (Layer& l : layers_) {
+    l.src = prev;
+    max_width_ = std::max(max_width_, l.out);
+    switch (l.kind) {
+      case LayerKind::kLinear:
+        l.dst = new_buffer();
+        prev_free = true;
+        break;
+      case LayerKind::kLayerNorm:
+        l.xhat = prev_free ? prev : new_buffer();
+        l.dst = new_buffer();
+        prev_free = true;
+        break;
+      case LayerKind::kReLU:
+      case LayerKind::kTanh:
+        l.dst = prev_free ? prev : new_buffer();
+        prev_free = false;
+        break;
+    }
+    prev = l.dst;
+  }
+}
+
+void Mlp::forward_layer(Layer& l) {
+  const Mat& x = input_of(l);
+  Mat& y = acts_[l.dst];
   const Eigen::Index batch = x.cols();
   switch (l.kind) {
     case LayerKind::kLinear: {
       Eigen::Map<const Mat> W(params_.data() + l.w_off, l.out, l.in);
       Eigen::Map<const Vec> b(params_.data() + l.b_off, l.out);
-      // dW needs this input in backward. A later layer's input is the previous layer's output,
-      // which stays put until the next forward; only the first layer's (the caller's) is copied.
-      if (&l == &layers_.front()) l.x = x;
-      l.y.resize(l.out, batch);
-      l.y.noalias() = W * x;
-      l.y.colwise() += b;
+      y.resize(l.out, batch);
+      y.noalias() = W * x;
+      y.colwise() += b;
       break;
     }
     case LayerKind::kLayerNorm: {
       Eigen::Map<const Vec> gain(params_.data() + l.w_off, l.out);
       Eigen::Map<const Vec> shift(params_.data() + l.b_off, l.out);
+      Mat& xhat = acts_[l.xhat];
       l.tmp1 = x.colwise().mean();
-      l.xhat = x.rowwise() - l.tmp1;
-      l.inv_std = (l.xhat.array().square().colwise().mean() + kLayerNormEps).rsqrt().matrix();
-      l.xhat.array().rowwise() *= l.inv_std.array();
-      l.y = l.xhat;
-      l.y.array().colwise() *= gain.array();
-      l.y.colwise() += shift;
+      if (&xhat == &x) {
+        xhat.rowwise() -= l.tmp1;
+      } else {
+        xhat = x.rowwise() - l.tmp1;
+      }
+      l.inv_std = (xhat.array().square().colwise().mean() + kLayerNormEps).rsqrt().matrix();
+      xhat.array().rowwise() *= l.inv_std.array();
+      y = xhat;
+      y.array().colwise() *= gain.array();
+      y.colwise() += shift;
       break;
     }
     case LayerKind::kReLU:
-      l.y = x.cwiseMax(0.0f);
+      if (&y == &x) {
+        y = y.cwiseMax(0.0f);
+      } else {
+        y = x.cwiseMax(0.0f);
+      }
       break;
     case LayerKind::kTanh:
-      l.y = x.array().tanh().matrix();
+      if (&y == &x) {
+        y = y.array().tanh().matrix();
+      } else {
+        y = x.array().tanh().matrix();
+      }
       break;
   }
 }
@@ -137,61 +185,78 @@ const Mat& Mlp::forward(const ConstMatRef& x) {
   if (x.rows() != input_dim_)
     throw std::invalid_argument("Mlp::forward: input has " + std::to_string(x.rows()) +
                                 " rows, network expects " + std::to_string(input_dim_));
-  forward_layer(layers_[0], x);
-  for (std::size_t i = 1; i < layers_.size(); ++i) forward_layer(layers_[i], layers_[i - 1].y);
-  return layers_.back().y;
+  input_ = x;
+  for (Layer& l : layers_) forward_layer(l);
+  return output();
 }
 
-void Mlp::backward_layer(Layer& l, const ConstMatRef& dy, bool param_grads) {
+Mlp::GradMap Mlp::grad_map(int which, Eigen::Index rows, Eigen::Index cols) {
+  return GradMap(grad_buf_[which].data(), rows, cols);
+}
+
+int Mlp::backward_layer(Layer& l, int buf, Eigen::Index batch, bool param_grads, bool input_grad) {
+  GradMap g = grad_map(buf, l.out, batch);
+  const Mat& y = acts_[l.dst];
   switch (l.kind) {
     case LayerKind::kLinear: {
       Eigen::Map<const Mat> W(params_.data() + l.w_off, l.out, l.in);
       if (param_grads) {
         Eigen::Map<Mat> dW(grads_.data() + l.w_off, l.out, l.in);
         Eigen::Map<Vec> db(grads_.data() + l.b_off, l.out);
-        const Mat& x = &l == &layers_.front() ? l.x : (&l - 1)->y;  // the input of the last forward
-        dW.noalias() += dy * x.transpose();
-        db += dy.rowwise().sum();
+        dW.noalias() += g * input_of(l).transpose();
+        db += g.rowwise().sum();
       }
-      l.dx.resize(l.in, dy.cols());
-      l.dx.noalias() = W.transpose() * dy;
-      break;
+      if (!input_grad) return buf;
+      GradMap dx = grad_map(1 - buf, l.in, batch);
+      dx.noalias() = W.transpose() * g;
+      return 1 - buf;
     }
     case LayerKind::kLayerNorm: {
-      // y = g⊙x̂ + b with x̂ = (x−μ)/σ per sample. With h = g⊙dy:
+      // y = gain⊙x̂ + shift with x̂ = (x−μ)/σ per sample. With h = gain⊙dy:
       // dx = (h − mean(h) − x̂·mean(h⊙x̂)) / σ.
       Eigen::Map<const Vec> gain(params_.data() + l.w_off, l.out);
+      const Mat& xhat = acts_[l.xhat];
       if (param_grads) {
         Eigen::Map<Vec> dgain(grads_.data() + l.w_off, l.out);
         Eigen::Map<Vec> dshift(grads_.data() + l.b_off, l.out);
-        dgain += (dy.array() * l.xhat.array()).rowwise().sum().matrix();
-        dshift += dy.rowwise().sum();
+        dgain += (g.array() * xhat.array()).rowwise().sum().matrix();
+        dshift += g.rowwise().sum();
       }
-      l.dx = dy;
-      l.dx.array().colwise() *= gain.array();
-      l.tmp1 = l.dx.colwise().mean();
-      l.tmp2 = (l.dx.array() * l.xhat.array()).colwise().mean().matrix();
-      l.dx.rowwise() -= l.tmp1;
-      l.dx.array() -= l.xhat.array().rowwise() * l.tmp2.array();
-      l.dx.array().rowwise() *= l.inv_std.array();
-      break;
+      g.array().colwise() *= gain.array();
+      l.tmp1 = g.colwise().mean();
+      l.tmp2 = (g.array() * xhat.array()).colwise().mean().matrix();
+      g.rowwise() -= l.tmp1;
+      g.array() -= xhat.array().rowwise() * l.tmp2.array();
+      g.array().rowwise() *= l.inv_std.array();
+      return buf;
     }
     case LayerKind::kReLU:
-      l.dx = (l.y.array() > 0.0f).select(dy.array(), 0.0f).matrix();
-      break;
+      g = (y.array() > 0.0f).select(g.array(), 0.0f).matrix();
+      return buf;
     case LayerKind::kTanh:
-      l.dx = (dy.array() * (1.0f - l.y.array().square())).matrix();
-      break;
+      g.array() *= 1.0f - y.array().square();
+      return buf;
   }
+  return buf;
 }
 
-const Mat& Mlp::backward(const ConstMatRef& dy, bool param_grads) {
-  const int n = static_cast<int>(layers_.size());
-  if (dy.rows() != output_dim_ || dy.cols() != layers_.back().y.cols())
+const Mat& Mlp::backward(const ConstMatRef& dy, Grads which) {
+  static const Mat kNoInputGrad;
+  const Eigen::Index batch = output().cols();
+  if (dy.rows() != output_dim_ || dy.cols() != batch)
     throw std::invalid_argument("Mlp::backward: gradient shape does not match the last forward");
-  backward_layer(layers_[n - 1], dy, param_grads);
-  for (int i = n - 2; i >= 0; --i) backward_layer(layers_[i], layers_[i + 1].dx, param_grads);
-  return layers_[0].dx;
+  const bool param_grads = which != Grads::kInputOnly;
+  const bool input_grad = which != Grads::kParamsOnly;
+  for (Vec& buf : grad_buf_) buf.resize(static_cast<Eigen::Index>(max_width_) * batch);
+  grad_map(0, output_dim_, batch) = dy;
+  int buf = 0;
+  for (int i = static_cast<int>(layers_.size()) - 1; i >= 0; --i) {
+    // Nobody reads the first layer's input gradient unless the caller asked for it.
+    buf = backward_layer(layers_[i], buf, batch, param_grads, /*input_grad=*/i > 0 || input_grad);
+  }
+  if (!input_grad) return kNoInputGrad;
+  input_grad_ = grad_map(buf, input_dim_, batch);
+  return input_grad_;
 }
 
 bool Mlp::same_architecture(const Mlp& other) const {

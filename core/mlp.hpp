@@ -6,7 +6,10 @@
 // offsets into it, which also makes an Mlp copyable with `=` (how target networks are made).
 //
 // Buffers are sized on the first call at a given batch size; later calls at that size allocate
-// nothing.
+// nothing. To keep the working set small (training interleaves the networks with SUMO, and both
+// compete for the same caches), ReLU and Tanh run in place on the previous layer's output where
+// nobody needs that output any more, LayerNorm normalises a Linear output in place, and the
+// backward pass runs through two scratch gradient buffers instead of one per layer.
 #pragma once
 
 #include <string>
@@ -18,6 +21,11 @@
 namespace rapid {
 
 enum class LayerKind { kLinear, kLayerNorm, kReLU, kTanh };
+
+// What a backward pass computes: the parameter gradients (added into grads()), the gradient with
+// respect to the network input (returned), or both. Asking only for what is read saves the first
+// layer's input-gradient GEMM or every weight-gradient GEMM.
+enum class Grads { kParamsAndInput, kParamsOnly, kInputOnly };
 
 struct LayerSpec {
   LayerKind kind;
@@ -41,10 +49,11 @@ class Mlp {
 
   // Forward pass; the returned reference stays valid until the next forward.
   const Mat& forward(const ConstMatRef& x);
-  // Backward pass from dL/d(output) of the last forward. Adds dL/dθ into grads() when
-  // `param_grads` (so zero_grad() first), and returns dL/d(input).
-  const Mat& backward(const ConstMatRef& dy, bool param_grads = true);
-  const Mat& output() const { return layers_.back().y; }
+  // Backward pass from dL/d(output) of the last forward. Adds dL/dθ into grads() unless `which`
+  // is kInputOnly (so zero_grad() first), and returns dL/d(input) (an empty matrix for
+  // kParamsOnly). The returned reference stays valid until the next backward.
+  const Mat& backward(const ConstMatRef& dy, Grads which = Grads::kParamsAndInput);
+  const Mat& output() const { return acts_[layers_.back().dst]; }
 
   void zero_grad() { grads_.setZero(); }
   Vec& params() { return params_; }
@@ -68,24 +77,36 @@ class Mlp {
   static Mlp load(const std::string& path);
 
  private:
+  // Activations live in acts_, a layer names its buffers by index (so `=` copies stay valid).
+  static constexpr int kCallerInput = -1;  // src of the first layer: the caller's x
   struct Layer {
     LayerKind kind;
     int in = 0, out = 0;
     int w_off = 0, b_off = 0;  // Linear: W (out×in), b (out). LayerNorm: gain, shift (out each).
-    Mat x;       // first layer only: the caller's input of the last forward (Linear needs it for dW)
-    Mat y;       // output of the last forward
-    Mat dx;      // dL/d(input) of the last backward
-    Mat xhat;    // LayerNorm: normalised input
-    RowVec inv_std;  // LayerNorm: 1/√(var + eps) per sample
-    RowVec tmp1, tmp2;  // LayerNorm backward per-sample reductions
+    int src = kCallerInput;    // buffer holding this layer's input
+    int dst = 0;               // buffer holding its output (== src when it runs in place)
+    int xhat = 0;              // LayerNorm: buffer of the normalised input (== src when in place)
+    RowVec inv_std;            // LayerNorm: 1/√(var + eps) per sample
+    RowVec tmp1, tmp2;         // LayerNorm per-sample reductions
   };
+  using GradMap = Eigen::Map<Mat, Eigen::AlignedMax>;
 
-  void forward_layer(Layer& l, const ConstMatRef& x);
-  void backward_layer(Layer& l, const ConstMatRef& dy, bool param_grads);
+  // Decides which buffer every layer reads and writes (see the class comment).
+  void plan_buffers();
+  const Mat& input_of(const Layer& l) const { return l.src == kCallerInput ? input_ : acts_[l.src]; }
+  void forward_layer(Layer& l);
+  // Turns the gradient in scratch buffer `buf` (w.r.t. l's output) into the gradient w.r.t. l's
+  // input: in place, or into the other scratch buffer (Linear); returns the buffer holding it.
+  int backward_layer(Layer& l, int buf, Eigen::Index batch, bool param_grads, bool input_grad);
+  GradMap grad_map(int which, Eigen::Index rows, Eigen::Index cols);
 
-  int input_dim_ = 0, output_dim_ = 0;
+  int input_dim_ = 0, output_dim_ = 0, max_width_ = 0;
   std::vector<LayerSpec> specs_;
   std::vector<Layer> layers_;
+  std::vector<Mat> acts_;
+  Mat input_;          // a copy of the caller's x from the last forward (Linear needs it for dW)
+  Vec grad_buf_[2];    // the backward pass's two scratch gradients, max_width × batch each
+  Mat input_grad_;     // dL/d(input) handed back by backward()
   Vec params_, grads_;
 };
 

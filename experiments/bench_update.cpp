@@ -1,8 +1,10 @@
 #include "experiments/bench_update.hpp"
 
+#include <iterator>
 #include <memory>
 
 #include "algos/registry.hpp"
+#include "core/mlp.hpp"
 #include "core/replay_buffer.hpp"
 #include "core/rng.hpp"
 #include "experiments/bench_synthetic.hpp"
@@ -28,10 +30,12 @@ void add_forward(std::vector<GemmShape>& g, const std::vector<std::pair<int, int
   for (auto [in, out] : net) g.push_back({GemmShape::kForward, out, in, b});
 }
 
-void add_backward(std::vector<GemmShape>& g, const std::vector<std::pair<int, int>>& net, int b, bool weights) {
+// A backward pass computes the network-input gradient only when it is read (Mlp's Grads).
+void add_backward(std::vector<GemmShape>& g, const std::vector<std::pair<int, int>>& net, int b, Grads which) {
   for (auto it = net.rbegin(); it != net.rend(); ++it) {
-    if (weights) g.push_back({GemmShape::kWeightGrad, it->second, it->first, b});
-    g.push_back({GemmShape::kInputGrad, it->second, it->first, b});
+    if (which != Grads::kInputOnly) g.push_back({GemmShape::kWeightGrad, it->second, it->first, b});
+    if (which != Grads::kParamsOnly || std::next(it) != net.rend())
+      g.push_back({GemmShape::kInputGrad, it->second, it->first, b});
   }
 }
 
@@ -80,13 +84,13 @@ std::vector<GemmShape> update_gemms(int obs_dim, int act_dim, const AgentConfig&
   // Actor step: π(s), Q(s, π(s)), dQ/da through the critic, then the actor's gradients.
   add_forward(g, actor, b);
   add_forward(g, critic, b);
-  add_backward(g, critic, b, /*weights=*/false);
-  add_backward(g, actor, b, /*weights=*/true);
+  add_backward(g, critic, b, Grads::kInputOnly);
+  add_backward(g, actor, b, Grads::kParamsOnly);
   // Critic step: the target y from both target networks, then Q(s, a) and its gradients.
   add_forward(g, actor, b);
   add_forward(g, critic, b);
   add_forward(g, critic, b);
-  add_backward(g, critic, b, /*weights=*/true);
+  add_backward(g, critic, b, Grads::kParamsOnly);
   return g;
 }
 

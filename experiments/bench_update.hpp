@@ -17,8 +17,9 @@ struct GemmShape {
 };
 
 // The GEMMs of one ActorCritic::update at batch B, in its order: actor forward, critic forward,
-// critic backward to the action (input gradients only), actor backward (weight and input
-// gradients), target actor and target critic forwards, critic forward, critic backward.
+// critic backward to the action (input gradients only), actor backward (weight gradients, and
+// input gradients of all but the first layer), target actor and target critic forwards, critic
+// forward, critic backward (as the actor's).
 // Elementwise work (bias, LayerNorm, ReLU, tanh, Adam, Polyak) is not GEMM work and not counted.
 std::vector<GemmShape> update_gemms(int obs_dim, int act_dim, const AgentConfig& config);
 double total_flops(const std::vector<GemmShape>& gemms);

@@ -89,23 +89,62 @@ TEST(MlpGradients, ActorShapedNetworkWithTanh) {
   check_gradients(net, 4, 16);
 }
 
-TEST(MlpGradients, BackwardAccumulatesAndCanSkipParameters) {
+// Layer orders the standard shapes never use, so that every buffer decision is exercised: a
+// LayerNorm or Tanh reading the caller's input, LayerNorm after ReLU (no in-place x̂), ReLU after
+// Tanh and Tanh after ReLU (their outputs are needed, so no in-place activation), two LayerNorms
+// in a row.
+TEST(MlpGradients, UnusualLayerOrdersKeepEveryBufferTheyNeed) {
+  using K = LayerKind;
+  const std::vector<std::vector<LayerSpec>> nets = {
+      {{K::kLayerNorm}, {K::kLinear, 5}, {K::kTanh}, {K::kLinear, 3}},
+      {{K::kTanh}, {K::kLinear, 6}, {K::kReLU}, {K::kLayerNorm}, {K::kLinear, 2}},
+      {{K::kLinear, 6}, {K::kTanh}, {K::kReLU}, {K::kLinear, 4}, {K::kLayerNorm}, {K::kLayerNorm}, {K::kTanh}},
+      {{K::kLinear, 5}, {K::kLayerNorm}, {K::kTanh}, {K::kTanh}, {K::kLinear, 2}, {K::kReLU}, {K::kTanh}},
+  };
+  for (std::size_t i = 0; i < nets.size(); ++i) {
+    Mlp net(4, nets[i]);
+    randomize(net, 40 + i);
+    check_gradients(net, 3, 50 + i);
+  }
+}
+
+TEST(MlpGradients, BackwardAccumulatesAndCanSkipEitherPart) {
   Mlp net = Mlp::make(3, {8}, 2, true, false);
   Rng rng(6);
   net.init(rng);
   const Mat x = random_mat(rng, 3, 4), R = random_mat(rng, 2, 4);
   net.forward(x);
   net.zero_grad();
-  net.backward(R);
+  const Mat both = net.backward(R);
   const Vec once = net.grads();
   net.forward(x);
   net.backward(R);
   EXPECT_TRUE(net.grads().isApprox(2.0f * once));
+
+  // Parameters only: the same parameter gradients, no input gradient.
   net.zero_grad();
   net.forward(x);
-  const Mat dx = net.backward(R, /*param_grads=*/false);
+  EXPECT_EQ(net.backward(R, Grads::kParamsOnly).size(), 0);
+  EXPECT_EQ(net.grads(), once);
+
+  // Input only: the same input gradient, no parameter gradients.
+  net.zero_grad();
+  net.forward(x);
+  const Mat dx = net.backward(R, Grads::kInputOnly);
   EXPECT_EQ(net.grads().squaredNorm(), 0.0f);
-  EXPECT_GT(dx.squaredNorm(), 0.0f);
+  EXPECT_EQ(dx, both);
+}
+
+TEST(Mlp, ForwardLeavesTheCallersInputAndEarlierOutputsAlone) {
+  Mlp net = Mlp::make(4, {6, 6}, 2, /*layer_norm=*/true, /*tanh_output=*/true);
+  Rng rng(8);
+  net.init(rng);
+  const Mat x = random_mat(rng, 4, 5);
+  const Mat x_before = x;
+  const Mat first = net.forward(x);
+  EXPECT_EQ(x, x_before);
+  EXPECT_EQ(net.forward(x), first);  // in-place layers do not feed back into the next call
+  EXPECT_EQ(net.output(), first);
 }
 
 TEST(Mlp, InitIsSeededAndScaled) {
