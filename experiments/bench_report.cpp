@@ -71,7 +71,6 @@ nlohmann::json to_json(const BenchReport& r) {
         {"env_rounds", s.env.rounds},
         {"env_decisions_measured", s.env.decisions},
         {"train_algo", s.train_algo},
-        {"train_update_us", s.train_update.update_s * 1e6},
         {"train_steps_per_s", s.train.train_steps_per_s},
         {"predicted_train_steps_per_s", s.train.predicted_steps_per_s},
         {"end_to_end_ratio", s.train.end_to_end_ratio},
@@ -80,6 +79,10 @@ nlohmann::json to_json(const BenchReport& r) {
         {"train_resets", s.train.resets},
         {"train_env_share", s.train.env_share},
         {"train_update_share", s.train.update_share},
+        {"train_s", s.train.train_s},
+        {"train_alone_decision_us", s.train.alone_decision_s * 1e6},
+        {"train_alone_reset_ms", s.train.alone_reset_s * 1e3},
+        {"train_alone_update_us", s.train.alone_update_s * 1e6},
         {"train_in_run_decision_us", s.train.in_run_decision_s * 1e6},
         {"train_in_run_update_us", s.train.in_run_update_s * 1e6},
     };
@@ -121,13 +124,17 @@ void print_report(std::ostream& out, const BenchReport& r) {
   for (const UpdateBenchResult& a : r.algorithms)
     out << fmt("  %-10s %11.0f %13.2f %12.2f %8.3f  %s\n", a.algo.c_str(), a.updates_per_s, a.update_gflops,
                a.gemm_gflops, a.gemm_ratio, verdict(a.gemm_ratio >= kGemmRatioMin));
-  out << "\nend-to-end training (trainer.cpp, evaluation excluded) vs 1/(t_env + t_update) (+ resets)\n";
-  out << fmt("  %-10s %-9s %10s %10s %8s %10s %8s  %s\n", "scenario", "algo", "steps/s", "predicted", "ratio",
-             "env share", "updates", "(target >= 0.85)");
-  for (const ScenarioBench& s : r.scenarios)
-    out << fmt("  %-10s %-9s %10.1f %10.1f %8.3f %10.2f %8ld  %s\n", s.env.scenario.c_str(), s.train_algo.c_str(),
-               s.train.train_steps_per_s, s.train.predicted_steps_per_s, s.train.end_to_end_ratio, s.train.env_share,
-               s.train.updates, verdict(s.train.end_to_end_ratio >= kEndToEndMin));
+  out << "\nend-to-end training (trainer.cpp) vs the same trajectory replayed alone + its updates timed alone\n";
+  out << fmt("  %-10s %-9s %9s %10s %8s %10s %14s %14s  %s\n", "scenario", "algo", "steps/s", "predicted", "ratio",
+             "env share", "decision us", "update us", "(target >= 0.85)");
+  out << fmt("  %-10s %-9s %9s %10s %8s %10s %14s %14s\n", "", "", "", "", "", "", "in run/alone", "in run/alone");
+  for (const ScenarioBench& s : r.scenarios) {
+    const TrainBenchResult& t = s.train;
+    out << fmt("  %-10s %-9s %9.1f %10.1f %8.3f %10.2f %7.0f/%-6.0f %7.0f/%-6.0f  %s\n", s.env.scenario.c_str(),
+               s.train_algo.c_str(), t.train_steps_per_s, t.predicted_steps_per_s, t.end_to_end_ratio, t.env_share,
+               t.in_run_decision_s * 1e6, t.alone_decision_s * 1e6, t.in_run_update_s * 1e6, t.alone_update_s * 1e6,
+               verdict(t.end_to_end_ratio >= kEndToEndMin));
+  }
   if (r.sweep && r.sweep->ran) {
     const double target = kSweepEfficiencyMin * r.sweep->workers;
     out << "\nsweep throughput (" << r.sweep->jobs << " pendulum ddpg jobs): "

@@ -23,7 +23,6 @@ inline constexpr double kSweepEfficiencyMin = 0.9;  // speedup ≥ 0.9·N (1.8 o
 struct ScenarioBench {
   EnvBenchResult env;
   std::string train_algo;
-  UpdateBenchResult train_update;  // the trained algorithm's update at this scenario's sizes
   TrainBenchResult train;
 };
 

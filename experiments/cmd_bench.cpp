@@ -28,7 +28,7 @@ struct BenchOptions {
 // How long each part runs: the default takes a minute or two, --quick a few seconds.
 struct BenchPlan {
   bench::EnvBenchOptions env;
-  bench::UpdateBenchOptions update, train_update;
+  bench::UpdateBenchOptions update;
   bench::TrainBenchOptions train;
   bench::SweepBenchOptions sweep;
 };
@@ -37,15 +37,12 @@ BenchPlan make_plan(bool quick) {
   BenchPlan p;
   if (quick) {
     p.env = {.budget_s = 0.0, .min_rounds = 1, .max_decisions = 20};
-    p.update = p.train_update = {.budget_s = 0.0, .block = 3, .min_rounds = 1};
-    p.train.steps = 30;
-    p.train.warmup_steps = 10;
+    p.update = {.budget_s = 0.0, .block = 3, .min_rounds = 1};
+    p.train = {.steps = 30, .warmup_steps = 10, .rounds = 1, .update_budget_s = 0.0};
   } else {
     p.env = {.budget_s = 8.0, .min_rounds = 6, .max_decisions = 150};
     p.update = {.budget_s = 2.0, .block = 20, .min_rounds = 5};
-    p.train_update = {.budget_s = 0.6, .block = 20, .min_rounds = 3};
-    p.train.steps = 400;
-    p.train.warmup_steps = 50;
+    p.train = {.steps = 1000, .warmup_steps = 100, .rounds = 3, .update_budget_s = 0.3};
   }
   return p;
 }
@@ -91,14 +88,10 @@ int run_bench(const BenchOptions& o) {
   for (bench::ScenarioBench& sb : report.scenarios) {
     const std::string& s = sb.env.scenario;
     std::cerr << "bench: " << s << ": end-to-end training (" << o.train_algo << ")\n";
-    const RunConfig config = run_config_from_json(default_config_json(s));
-    const auto env = make_env(s);
     sb.train_algo = o.train_algo;
-    sb.train_update = bench::bench_update(o.train_algo, env->obs_dim(), env->act_dim(), config.agent, plan.train_update);
-    const bench::PartCosts costs{sb.env.decision_s, sb.env.reset_s, sb.train_update.update_s};
     bench::TrainBenchOptions train = plan.train;
     train.algo = o.train_algo;
-    sb.train = bench::bench_train(s, config, costs, train);
+    sb.train = bench::bench_train(s, run_config_from_json(default_config_json(s)), train);
   }
 
   if (o.quick || o.no_sweep) {
