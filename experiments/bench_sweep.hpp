@@ -8,9 +8,9 @@ namespace rapid::bench {
 
 struct SweepBenchOptions {
   int workers = 2;
-  int jobs = 4;          // grid cells (ddpg on pendulum, one per seed)
+  int jobs = 8;          // grid cells (ddpg on pendulum, one per seed; 0.5 s each)
   long steps = 5000;     // training steps per cell (a few seconds: process start-up must not dominate)
-  int repeats = 1;       // each repeat runs 1 worker and N workers, alternating the order
+  int repeats = 3;       // each repeat runs 1 worker and N workers, alternating the order
 };
 
 struct SweepBenchResult {
