@@ -6,11 +6,31 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 
 namespace rapid {
+
+int remove_leftover_temporaries(const std::vector<std::string>& paths) {
+  namespace fs = std::filesystem;
+  static const std::regex suffix(R"(\.tmp\.[0-9]+(\.[0-9]+)?)");
+  int removed = 0;
+  for (const std::string& path : paths) {
+    const fs::path target(path);
+    const std::string prefix = target.filename().string();
+    std::error_code ec;
+    for (const fs::directory_entry& e : fs::directory_iterator(target.parent_path().empty() ? "." : target.parent_path(), ec)) {
+      const std::string name = e.path().filename().string();
+      if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
+      if (!std::regex_match(name.substr(prefix.size()), suffix) || !e.is_regular_file(ec)) continue;
+      if (fs::remove(e.path(), ec)) ++removed;
+    }
+  }
+  return removed;
+}
 
 void write_file_atomic(const std::string& path, std::string_view content) {
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());

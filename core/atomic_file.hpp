@@ -4,11 +4,18 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace rapid {
 
 // Throws std::runtime_error naming the path on any failure; the target is then untouched.
 void write_file_atomic(const std::string& path, std::string_view content);
+
+// Removes the temporaries that writers killed mid-write left beside these files:
+// "<path>.tmp.<pid>" (write_file_atomic) and "<path>.tmp.<pid>.<n>" (write_dataset). Returns how
+// many were removed. Only for files whose writes belong to the caller (a job's own outputs, when
+// the job starts): a live writer's temporary cannot be told from a dead one's.
+int remove_leftover_temporaries(const std::vector<std::string>& paths);
 
 // Reads a whole file; throws std::runtime_error naming the path if it cannot be read.
 std::string read_file(const std::string& path);

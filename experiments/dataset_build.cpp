@@ -32,7 +32,7 @@ std::vector<Source> sources(long steps) {
 }
 
 std::string checkpoint_path(const std::string& ref_dir, long step, long steps) {
-  return step == steps ? ref_dir + "/actor.ckpt" : ref_dir + "/actor_" + std::to_string(step) + ".ckpt";
+  return step == steps ? ref_dir + "/actor.ckpt" : checkpoint_file(ref_dir, step);
 }
 
 bool record_is_done(const std::string& path, const std::string& hash) {
@@ -80,6 +80,11 @@ int build_datasets(const DatasetBuildSpec& spec) {
   const std::string out = spec.dir + "/" + spec.scenario;
   const std::string ref_dir = out + "/reference";
   fs::create_directories(out);
+  // A killed earlier build may have left temporaries of its files here.
+  std::vector<std::string> outputs = {out + "/build.json"};
+  for (const auto& name : dataset_names()) outputs.push_back(out + "/" + name + ".h5");
+  if (const int n = remove_leftover_temporaries(outputs); n > 0)
+    std::cerr << "dataset build: removed " << n << " temporary file(s) an interrupted build left in " << out << "\n";
 
   JobSpec ref;
   ref.scenario = spec.scenario;

@@ -38,6 +38,10 @@ nlohmann::json resolve_config(const std::string& scenario, const nlohmann::json&
   return config;
 }
 
+std::string checkpoint_file(const std::string& dir, long step) {
+  return dir + "/actor_" + std::to_string(step) + ".ckpt";
+}
+
 namespace {
 
 nlohmann::json log_to_json(const TrainLog& log, nlohmann::json& record) {
@@ -75,6 +79,12 @@ int run_job(const JobSpec& spec) {
   if (!needs_prior && !spec.dataset_path.empty())
     throw std::invalid_argument("algorithm '" + spec.algo + "' takes no dataset");
   fs::create_directories(spec.out_dir);
+  // A killed earlier attempt of this job may have left temporaries of its files here.
+  std::vector<std::string> outputs = {spec.out_dir + "/record.json", spec.out_dir + "/progress.json",
+                                      spec.out_dir + "/actor.ckpt"};
+  for (long step : spec.checkpoint_steps) outputs.push_back(checkpoint_file(spec.out_dir, step));
+  if (const int n = remove_leftover_temporaries(outputs); n > 0)
+    std::cerr << "rapid run: removed " << n << " temporary file(s) an interrupted attempt left in " << spec.out_dir << "\n";
 
   nlohmann::json record = {
       {"schema", kRunRecordSchema},
@@ -109,7 +119,7 @@ int run_job(const JobSpec& spec) {
                             stream_seed(spec.seed, Stream::kNetworkInit));
     TrainHooks hooks;
     hooks.checkpoint_steps = spec.checkpoint_steps;
-    hooks.checkpoint = [&](long step) { agent->actor().save(spec.out_dir + "/actor_" + std::to_string(step) + ".ckpt"); };
+    hooks.checkpoint = [&](long step) { agent->actor().save(checkpoint_file(spec.out_dir, step)); };
     hooks.progress = [&](long step, const TrainLog& l) {
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       write_progress(spec.out_dir, step, config.steps, s > 0 ? l.env_steps / s : 0.0);

@@ -34,6 +34,9 @@ std::string job_config_hash(const JobSpec& spec);
 nlohmann::json resolve_config(const std::string& scenario, const nlohmann::json& grid_overrides,
                               const nlohmann::json& set_overrides);
 
+// Where a job keeps the extra actor checkpoint taken after `step` training steps.
+std::string checkpoint_file(const std::string& dir, long step);
+
 // Trains the job and writes out_dir/record.json (status ok, diverged or failed) plus
 // out_dir/actor.ckpt and out_dir/progress.json. Returns 0 when the record says ok, 1 otherwise.
 // Throws (writing nothing) only for problems with the spec itself.

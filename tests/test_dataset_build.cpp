@@ -70,9 +70,14 @@ TEST(DatasetBuild, WritesCheckpointsDatasetsAndReusesThem) {
   EXPECT_EQ(mtime(out + "/reference/record.json"), ref_time);
   EXPECT_EQ(mtime(out + "/initial.h5"), data_time);
 
-  // A changed collection setting redoes the datasets but keeps the reference agent.
+  // A changed collection setting redoes the datasets but keeps the reference agent; the
+  // temporaries a killed earlier build left beside the datasets go.
   write_grid(dir.file("grid.json"), 600);
+  write_file_atomic(out + "/initial.h5.tmp.4242.0", "half a dataset");
+  write_file_atomic(out + "/build.json.tmp.4242", "half a manifest");
   ASSERT_EQ(rapid_cli(cmd).exit_code, 0);
+  EXPECT_FALSE(fs::exists(out + "/initial.h5.tmp.4242.0"));
+  EXPECT_FALSE(fs::exists(out + "/build.json.tmp.4242"));
   EXPECT_EQ(mtime(out + "/reference/record.json"), ref_time);
   EXPECT_EQ(read_dataset(out + "/initial.h5").size(), 600u);
 }

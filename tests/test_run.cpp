@@ -77,6 +77,20 @@ TEST(RapidRun, WritesACompleteRecord) {
   EXPECT_TRUE(std::filesystem::exists(dir.file("job/actor.ckpt")));
 }
 
+TEST(RapidRun, RemovesTheTemporariesAKilledAttemptLeft) {
+  rapid::testing::ScratchDir dir;
+  std::filesystem::create_directories(dir.file("job"));
+  for (const char* f : {"record.json.tmp.4242", "actor.ckpt.tmp.4242", "progress.json.tmp.17", "mine.txt.tmp.5"})
+    write_file_atomic(dir.file(std::string("job/") + f), "half");
+  const auto out = rapid_cli("run " + kShort + "--algo ddpg --seed 3 --out " + dir.file("job"), /*with_stderr=*/true);
+  ASSERT_EQ(out.exit_code, 0) << out.text;
+  EXPECT_NE(out.text.find("removed 3 temporary file(s)"), std::string::npos) << out.text;
+  for (const char* f : {"record.json.tmp.4242", "actor.ckpt.tmp.4242", "progress.json.tmp.17"})
+    EXPECT_FALSE(std::filesystem::exists(dir.file(std::string("job/") + f))) << f;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("job/mine.txt.tmp.5")));  // not the job's file
+  EXPECT_EQ(read_record(dir.file("job"))["status"], "ok");
+}
+
 TEST(RapidRun, SameSeedGivesTheSameRecord) {
   rapid::testing::ScratchDir dir;
   for (const char* job : {"a", "b"})
