@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <iostream>
+#include <regex>
 #include <thread>
 
 #include "core/atomic_file.hpp"
@@ -31,6 +32,7 @@ struct SweepOptions {
   int jobs = 0;  // 0: the grid's "jobs", else the number of cores
   bool force = false;
   bool no_summary = false;
+  std::string job_timeout;  // local: e.g. 90s, 45m, 2h; empty: no limit
   // --backend slurm (sweep_slurm.hpp)
   SlurmOptions slurm;
   bool dry_run = false;
@@ -39,6 +41,19 @@ struct SweepOptions {
   long run_job = -1;
   std::string job_list;
 };
+
+// "90", "90s", "45m", "2h", "1.5h", "1d" → seconds; throws UsageError naming the option.
+double parse_job_timeout(const std::string& text) {
+  static const std::regex pattern(R"(([0-9]+(\.[0-9]+)?)([smhd]?))");
+  std::smatch m;
+  const double scale[] = {1, 60, 3600, 86400};
+  if (std::regex_match(text, m, pattern)) {
+    const std::string unit = m[3].str();
+    const double seconds = std::stod(m[1].str()) * scale[unit.empty() ? 0 : std::string("smhd").find(unit[0])];
+    if (seconds > 0) return seconds;
+  }
+  throw UsageError("--job-timeout: '" + text + "' is not a positive duration; use e.g. 90s, 45m or 2h");
+}
 
 // The backends `--backend` accepts: local runs the job graph here (sweep_runner.hpp); slurm gets
 // the same validated folder and job graph and submits job arrays instead (sweep_slurm.hpp).
@@ -168,7 +183,11 @@ int sweep_command(const SweepOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  if (o.backend == "slurm") return submit_to_slurm(o, folder, options.selection);
+  if (o.backend == "slurm") {
+    if (!o.job_timeout.empty()) throw UsageError("--job-timeout is for the local backend; with --backend slurm use --time");
+    return submit_to_slurm(o, folder, options.selection);
+  }
+  if (!o.job_timeout.empty()) options.job_timeout_s = parse_job_timeout(o.job_timeout);
   if (o.slurm_option_given || o.dry_run)
     throw UsageError("--partition, --time, --cpus-per-task, --array-parallelism, --sbatch-arg and --dry-run need --backend slurm");
   options.workers = o.jobs > 0 ? o.jobs : grid.jobs.value_or(static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
@@ -218,6 +237,8 @@ Command add_sweep_command(CLI::App& parent) {
   sub->add_flag("--no-summary", o->no_summary, "do not refresh the reports (rapid summarize) at the end");
   sub->add_option("--backend", o->backend, "where jobs run: local (this machine) or slurm (submit job arrays)");
   sub->add_option("--out", o->out, "sweep folder (default: results/<grid name>)");
+  sub->add_option("--job-timeout", o->job_timeout,
+                  "local: stop a job that runs longer than this, e.g. 45m or 2h; it counts as a failed attempt");
   const std::vector<CLI::Option*> slurm_only = {
       sub->add_option("--partition", o->slurm.partition, "slurm: the partition (default: the cluster's default)"),
       sub->add_option("--time", o->slurm.time, "slurm: time limit per job, e.g. 2:00:00 (default: the partition's)"),

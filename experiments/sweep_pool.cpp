@@ -142,4 +142,8 @@ void ProcessPool::signal_all(int sig) const {
   for (pid_t pid : children_) ::kill(pid, sig);
 }
 
+void ProcessPool::signal(pid_t pid, int sig) const {
+  if (children_.count(pid)) ::kill(pid, sig);
+}
+
 }  // namespace rapid

@@ -46,6 +46,7 @@ class ProcessPool {
   int interruption_count() const;
 
   void signal_all(int sig) const;
+  void signal(pid_t pid, int sig) const;
   std::size_t running() const { return children_.size(); }
 
  private:

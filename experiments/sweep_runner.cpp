@@ -27,6 +27,7 @@ struct JobRun {
   std::string expected_hash;  // cells: computed once the dataset exists
   std::string error;
   pid_t pid = -1;
+  bool timed_out = false;  // stopped by the job timeout; SIGKILL follows if SIGTERM is ignored
   Clock::time_point started{};
   std::time_t started_wall = 0;
   long units = 1;  // rough work estimate (env steps) for the ETA
@@ -66,6 +67,7 @@ class LocalRunner {
       if (pool_.running() == 0 && (pool_.interruption() || !any(Phase::kReady))) break;
       if (pool_.interruption()) stop_children();
       for (const ChildExit& e : pool_.wait(std::chrono::milliseconds(200))) handle_exit(e);
+      enforce_job_timeout();
       display_->tick(snapshot());
     }
     for (JobRun& r : runs_)
@@ -169,6 +171,7 @@ class LocalRunner {
     r.pid = pool_.start(options_.binary, job_arguments(job), folder_.dir,
                         folder_.path(job.dir + "/" + sweep_files::kLog));
     r.phase = Phase::kRunning;
+    r.timed_out = false;
     r.started = Clock::now();
     r.started_wall = std::time(nullptr);
     r.ran = true;
@@ -201,7 +204,9 @@ class LocalRunner {
       display_->event("stopped  " + job.id(), snapshot());
       return;
     }
-    const AttemptVerdict verdict = judge_attempt(folder_, job, r.expected_hash, e.exit_code, e.signal);
+    AttemptVerdict verdict = judge_attempt(folder_, job, r.expected_hash, e.exit_code, e.signal);
+    if (r.timed_out && verdict.state != "ok")
+      verdict = {"failed", /*retryable=*/true, "timed out after " + format_duration(options_.job_timeout_s) + " (--job-timeout)"};
     if (verdict.state == "ok") {
       r.phase = Phase::kOk;
       r.error.clear();
@@ -231,6 +236,27 @@ class LocalRunner {
     display_->event((final_phase == Phase::kDiverged ? "diverged " : "failed   ") + job.id() + " after " +
                         std::to_string(r.attempts) + " attempt" + (r.attempts == 1 ? "" : "s") + ": " + error,
                     snapshot());
+  }
+
+  // A job past the timeout gets SIGTERM; one still alive 10 s later gets SIGKILL. Its exit then
+  // arrives through handle_exit like any other.
+  void enforce_job_timeout() {
+    if (options_.job_timeout_s <= 0 || pool_.interruption()) return;
+    for (std::size_t i = 0; i < runs_.size(); ++i) {
+      JobRun& r = runs_[i];
+      if (r.phase != Phase::kRunning) continue;
+      const double over = seconds_since(r.started) - options_.job_timeout_s;
+      if (over < 0) continue;
+      if (!r.timed_out) {
+        r.timed_out = true;
+        display_->event("timeout  " + folder_.graph.jobs[i].id() + " after " + format_duration(options_.job_timeout_s) +
+                            ": stopping it",
+                        snapshot());
+        pool_.signal(r.pid, SIGTERM);
+      } else if (over > 10.0) {
+        pool_.signal(r.pid, SIGKILL);
+      }
+    }
   }
 
   // First request: SIGTERM to every child. A second Ctrl-C, or children still alive after a

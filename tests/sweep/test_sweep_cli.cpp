@@ -81,6 +81,9 @@ TEST(SweepCli, InvalidJsonMissingFileBadOptionsAndBadStatusFolder) {
       {"sweep " + good.string() + " --only algo=sac" + tail, "--only: algo 'sac' is not in the grid"},
       {"sweep " + good.string() + " --only seed=3" + tail, "--only: seed 3 is not in the grid's seeds"},
       {"sweep " + good.string() + " --jobs 0" + tail, "--jobs"},
+      {"sweep " + good.string() + " --job-timeout 2x" + tail, "--job-timeout: '2x' is not a positive duration"},
+      {"sweep " + good.string() + " --job-timeout 0" + tail, "--job-timeout: '0' is not a positive duration"},
+      {"sweep " + good.string() + " --job-timeout 1h --backend slurm" + tail, "with --backend slurm use --time"},
       {"status " + dir.path().string(), "is not a sweep folder"},
       {"status " + (dir.path() / "nowhere").string(), "is not a folder"},
   };

@@ -85,6 +85,24 @@ TEST_F(KillSweep, AKilledRunnerResumesLeavingFinishedRecordsUntouched) {
   EXPECT_EQ(comparable_records(sweep_), undisturbed());
 }
 
+TEST_F(KillSweep, AJobOverTheTimeoutIsStoppedRetriedAndReportedFailed) {
+  // Tens of seconds of training against a one-second limit; max_retries 1.
+  json grid = pendulum_grid("timeout", {"ddpg"}, {0}, 10 * kSteps);
+  grid["max_retries"] = 1;
+  write_json(grid_path_, grid);
+  const Result r = run_rapid(sweep_args(sweep_, 1) + " --job-timeout 1s --no-summary");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("timeout  pendulum/none/ddpg/seed0 after 1.0s: stopping it"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("failed pendulum/none/ddpg/seed0: timed out after 1.0s (--job-timeout)"), std::string::npos)
+      << r.output;
+  const json manifest = read_json(sweep_ / "sweep.json");
+  EXPECT_EQ(manifest["retries"], 1);
+  EXPECT_FALSE(fs::exists(sweep_ / "jobs/pendulum/none/ddpg/seed0/record.json"));
+  EXPECT_FALSE(process_running_in(sweep_));
+  const json status = json::parse(run_rapid("status --json " + sweep_.string()).output);
+  EXPECT_EQ(status["counts"]["failed"], 1) << status.dump();
+}
+
 TEST_F(KillSweep, ASecondSweepOnTheFolderIsRefusedAndCtrlCStopsCleanly) {
   const fs::path log = dir_.path() / "runner.log";
   const pid_t runner = spawn_rapid(sweep_args(sweep_, 2), log);
