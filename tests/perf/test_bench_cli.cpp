@@ -37,7 +37,8 @@ TEST(RapidBench, QuickRunWritesEveryKey) {
   for (const char* s : {"lane-drop", "cut-in", "merge"}) {
     ASSERT_TRUE(j["scenarios"].contains(s)) << s;
     for (const char* key : {"sumo_steps_per_s", "env_decisions_per_s", "env_overhead_ratio", "train_steps_per_s",
-                            "end_to_end_ratio"}) {
+                            "end_to_end_ratio", "predicted_train_steps_per_s", "train_alone_decision_us",
+                            "train_in_run_decision_us", "train_alone_update_us", "train_in_run_update_us"}) {
       ASSERT_TRUE(j["scenarios"][s].contains(key)) << s << "." << key;
       EXPECT_TRUE(j["scenarios"][s][key].is_number()) << s << "." << key;
     }
