@@ -1,6 +1,8 @@
 #include "experiments/dataset_build.hpp"
 
+#include <chrono>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 
 #include "core/atomic_file.hpp"
@@ -47,8 +49,10 @@ bool record_is_done(const std::string& path, const std::string& hash) {
 
 // Rolls `actor` out with Gaussian exploration noise for exactly `n` transitions. Episode e of
 // source `source_index` runs on traffic seed stream_seed(seed, kDataset, source_index·10⁶ + e).
-// A final episode cut at n is marked as a timeout.
-Dataset collect(Env& env, Mlp& actor, long n, float noise_std, std::uint64_t seed, int source_index) {
+// A final episode cut at n is marked as a timeout. `progress(t)` is called about once a second.
+Dataset collect(Env& env, Mlp& actor, long n, float noise_std, std::uint64_t seed, int source_index,
+                const std::function<void(long)>& progress) {
+  auto last_progress = std::chrono::steady_clock::now();
   DatasetBuilder builder(env.obs_dim(), env.act_dim());
   builder.reserve(static_cast<std::size_t>(n));
   Rng noise(stream_seed(seed, Stream::kExploration, 1000 + source_index));
@@ -70,6 +74,10 @@ Dataset collect(Env& env, Mlp& actor, long n, float noise_std, std::uint64_t see
     builder.add(obs, action, r.reward, next_obs, r.terminated, (r.truncated && !r.terminated) || cut);
     obs = next_obs;
     need_reset = r.terminated || r.truncated;
+    if (std::chrono::steady_clock::now() - last_progress >= std::chrono::seconds(1)) {
+      progress(t + 1);
+      last_progress = std::chrono::steady_clock::now();
+    }
   }
   return builder.finish();
 }
@@ -81,7 +89,7 @@ int build_datasets(const DatasetBuildSpec& spec) {
   const std::string ref_dir = out + "/reference";
   fs::create_directories(out);
   // A killed earlier build may have left temporaries of its files here.
-  std::vector<std::string> outputs = {out + "/build.json"};
+  std::vector<std::string> outputs = {out + "/build.json", out + "/progress.json"};
   for (const auto& name : dataset_names()) outputs.push_back(out + "/" + name + ".h5");
   if (const int n = remove_leftover_temporaries(outputs); n > 0)
     std::cerr << "dataset build: removed " << n << " temporary file(s) an interrupted build left in " << out << "\n";
@@ -120,10 +128,19 @@ int build_datasets(const DatasetBuildSpec& spec) {
   std::unique_ptr<Env> env = make_env(spec.scenario);
   std::map<std::string, Dataset> made;
   int index = 0;
+  // Progress over all sources' transitions, so `rapid status` and the sweep see the build alive.
+  const long total = static_cast<long>(sources(steps).size()) * spec.reference.transitions;
+  const auto t_collect = std::chrono::steady_clock::now();
+  auto report = [&](long done) {
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_collect).count();
+    write_progress(out, done, total, s > 0 ? done / s : 0.0);
+  };
   for (const Source& s : sources(steps)) {
     const std::string ckpt = checkpoint_path(ref_dir, s.step, steps);
     Mlp actor = Mlp::load(ckpt);
-    Dataset d = collect(*env, actor, spec.reference.transitions, spec.reference.noise_std, spec.reference.seed, index++);
+    const long before = index * spec.reference.transitions;
+    Dataset d = collect(*env, actor, spec.reference.transitions, spec.reference.noise_std, spec.reference.seed, index++,
+                        [&](long t) { report(before + t); });
     d.metadata = {{meta::kScenario, spec.scenario},
                   {meta::kSourceCheckpoint, fs::path(ckpt).filename().string() + " (step " + std::to_string(s.step) + ")"},
                   {meta::kSeed, std::to_string(spec.reference.seed)},
@@ -131,6 +148,7 @@ int build_datasets(const DatasetBuildSpec& spec) {
                   {meta::kCodeRevision, code_revision() + (code_dirty() ? "+dirty" : "")},
                   {"noise_std", std::to_string(spec.reference.noise_std)}};
     made.emplace(s.name, std::move(d));
+    report(index * spec.reference.transitions);
   }
   Metadata mixed_meta = made.at("final").metadata;
   mixed_meta[meta::kSourceCheckpoint] = "half final, half medium (whole episodes)";

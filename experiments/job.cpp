@@ -42,6 +42,11 @@ std::string checkpoint_file(const std::string& dir, long step) {
   return dir + "/actor_" + std::to_string(step) + ".ckpt";
 }
 
+void write_progress(const std::string& dir, long step, long steps, double steps_per_s) {
+  const nlohmann::json p = {{"step", step}, {"steps", steps}, {"steps_per_s", steps_per_s}};
+  write_file_atomic(dir + "/progress.json", p.dump());
+}
+
 namespace {
 
 nlohmann::json log_to_json(const TrainLog& log, nlohmann::json& record) {
@@ -61,11 +66,6 @@ nlohmann::json log_to_json(const TrainLog& log, nlohmann::json& record) {
                                 {"actor", json_number(p.actor_loss)}, {"q_mean", json_number(p.q_mean)}});
   }
   return record;
-}
-
-void write_progress(const std::string& dir, long step, long steps, double steps_per_s) {
-  const nlohmann::json p = {{"step", step}, {"steps", steps}, {"steps_per_s", steps_per_s}};
-  write_file_atomic(dir + "/progress.json", p.dump());
 }
 
 }  // namespace

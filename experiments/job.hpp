@@ -34,6 +34,9 @@ std::string job_config_hash(const JobSpec& spec);
 nlohmann::json resolve_config(const std::string& scenario, const nlohmann::json& grid_overrides,
                               const nlohmann::json& set_overrides);
 
+// dir/progress.json: how far a running job is (`rapid status` and the live sweep display read it).
+void write_progress(const std::string& dir, long step, long steps, double steps_per_s);
+
 // Where a job keeps the extra actor checkpoint taken after `step` training steps.
 std::string checkpoint_file(const std::string& dir, long step);
 

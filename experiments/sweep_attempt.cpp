@@ -15,7 +15,8 @@ std::string signal_name(int sig) {
 }
 
 void discard_progress(const SweepFolder& folder, const SweepJob& job) {
-  if (job.kind == JobKind::kCell) fs::remove(folder.path(job_progress_path(job)));
+  std::error_code ec;
+  fs::remove(folder.path(job_progress_path(job)), ec);
 }
 
 void begin_attempt(const SweepFolder& folder, const SweepJob& job, int attempt) {

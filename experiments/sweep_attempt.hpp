@@ -15,7 +15,7 @@ namespace rapid {
 // appends the attempt's header line with its command to the job's log.txt.
 void begin_attempt(const SweepFolder& folder, const SweepJob& job, int attempt);
 
-// A killed cell leaves its last progress.json behind; it no longer describes a running job.
+// A killed job leaves its last progress.json behind; it no longer describes a running job.
 void discard_progress(const SweepFolder& folder, const SweepJob& job);
 
 struct AttemptVerdict {

@@ -98,7 +98,7 @@ std::string job_marker_path(const SweepJob& job) {
 std::string job_progress_path(const SweepJob& job) {
   switch (job.kind) {
     case JobKind::kReference: return datasets_dir(job.scenario) + "/reference/" + sweep_files::kProgress;
-    case JobKind::kDatasets: return "";
+    case JobKind::kDatasets: return datasets_dir(job.scenario) + "/" + sweep_files::kProgress;
     case JobKind::kCell: break;
   }
   return job.dir + "/" + sweep_files::kProgress;

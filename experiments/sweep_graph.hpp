@@ -74,7 +74,7 @@ std::vector<std::string> job_arguments(const SweepJob& job);
 // the dataset build's build.json. Relative to the sweep folder.
 std::string job_marker_path(const SweepJob& job);
 
-// Where the job reports its progress ({"step","steps","steps_per_s"}); empty if it does not.
+// Where the job reports its progress ({"step","steps","steps_per_s"}).
 std::string job_progress_path(const SweepJob& job);
 
 // The dataset file a prior cell trains on, relative to the sweep folder; empty for ddpg.

@@ -47,6 +47,10 @@ TEST(DatasetBuild, WritesCheckpointsDatasetsAndReusesThem) {
                         "reference/actor.ckpt", "initial.h5", "medium.h5", "final.h5", "final+medium.h5", "build.json"})
     EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
   EXPECT_EQ(nlohmann::json::parse(read_file(out + "/reference/record.json"))["cell"]["seed"], 1000);
+  // The collection reported how far it got (three sources of 1,000 transitions), for `rapid status`.
+  const auto progress = nlohmann::json::parse(read_file(out + "/progress.json"));
+  EXPECT_EQ(progress["step"], 3000);
+  EXPECT_EQ(progress["steps"], 3000);
 
   const Dataset initial = read_dataset(out + "/initial.h5", {3, 1, "pendulum"});
   const Dataset final_data = read_dataset(out + "/final.h5", {3, 1, "pendulum"});

@@ -140,6 +140,10 @@ TEST(JobGraph, ExpandsCellsDdpgOncePerSeedAndTheDatasetStage) {
                                       "--dataset-dir", "datasets", "--seed", "0", "--grid", "grid.json", "--out",
                                       "jobs/pendulum/initial/rapid-rl/seed0"}));
   EXPECT_EQ(job_arguments(graph.jobs[0]).back(), "--reference-only");
+  // Every stage reports progress where `rapid status` looks (the dataset build included).
+  EXPECT_EQ(job_progress_path(graph.jobs[0]), "datasets/pendulum/reference/progress.json");
+  EXPECT_EQ(job_progress_path(graph.jobs[1]), "datasets/pendulum/progress.json");
+  EXPECT_EQ(job_progress_path(graph.jobs[2]), "jobs/pendulum/initial/rapid-rl/seed0/progress.json");
 }
 
 TEST(JobGraph, TheQuickGridHasThe39TableCellsPerSeed) {
