@@ -89,7 +89,9 @@ std::unique_ptr<SweepLock> lock_folder(const fs::path& dir) {
 void print_slurm_plan(const SweepFolder& folder, const SlurmPlan& plan, const SlurmOptions& options) {
   for (std::size_t a = 0; a < plan.arrays.size(); ++a) {
     const SlurmArray& array = plan.arrays[a];
-    const std::string after = a == 0 ? "" : "<job id of the " + plan.arrays[a - 1].stage + " array>";
+    std::string after;
+    for (std::size_t k : array.after)
+      after += (after.empty() ? "" : ":") + std::string("<job id of the ") + plan.arrays[k].name + " array>";
     std::cout << "#### " << (folder.dir / array.script).string() << "\n"
               << sbatch_script(folder, plan, a, after, options);
     std::cout << "#### " << (folder.dir / array.list).string() << ":";
@@ -99,8 +101,8 @@ void print_slurm_plan(const SweepFolder& folder, const SlurmPlan& plan, const Sl
   }
 }
 
-// --backend slurm: prepare the folder like the local backend, then submit one array per stage
-// and return without waiting. The lock is held only while submitting; the tasks share it.
+// --backend slurm: prepare the folder like the local backend, then submit the job arrays
+// (sweep_slurm.hpp) and return without waiting. The lock is held only while submitting; the tasks share it.
 int submit_to_slurm(const SweepOptions& o, SweepFolder& folder, const Selection& selection) {
   if (o.jobs > 0)
     throw UsageError("--jobs: the slurm backend runs each job as an array task; use --array-parallelism to limit them");
@@ -148,7 +150,7 @@ int submit_to_slurm(const SweepOptions& o, SweepFolder& folder, const Selection&
   std::cout << "sweep " << dir.string() << ": submitted " << count(plan.tasks(), "job") << " to Slurm (" << plan.done
             << " already done)\n";
   for (const SlurmArray& array : plan.arrays)
-    std::cout << "  " << array.stage << ": job " << array.job_id << ", " << count(array.tasks.size(), "task") << "\n";
+    std::cout << "  " << array.name << ": job " << array.job_id << ", " << count(array.tasks.size(), "task") << "\n";
   std::cout << "check with: rapid status " << dir.string() << "   (task output: " << (dir / "slurm").string()
             << "/, scripts and task lists: " << (dir / plan.submission).string() << "/)\n";
   return kExitOk;

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <iterator>
 #include <cerrno>
 #include <cstring>
 #include <ctime>
@@ -138,6 +139,7 @@ SlurmPlan plan_slurm_sweep(const SweepFolder& folder, const Selection& selection
   const std::vector<SweepJob>& jobs = folder.graph.jobs;
   const std::vector<bool> needed = selected_with_dependencies(selection, folder.graph);
   std::vector<bool> submitted(jobs.size(), false);
+  std::vector<std::size_t> array_of(jobs.size(), 0);
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     if (!needed[i]) continue;
     ++plan.needed;
@@ -149,15 +151,31 @@ SlurmPlan plan_slurm_sweep(const SweepFolder& folder, const Selection& selection
       continue;
     }
     submitted[i] = true;
+    // One array per (stage, scenario, arrays it must wait for): scenarios never wait for each
+    // other, and cells with nothing to wait for do not wait for the datasets of the others.
+    std::vector<std::size_t> after;
+    for (std::size_t d : job.deps)
+      if (submitted[d]) after.push_back(array_of[d]);
+    std::sort(after.begin(), after.end());
+    after.erase(std::unique(after.begin(), after.end()), after.end());
     const std::string stage = stage_name(job.kind);
-    if (plan.arrays.empty() || plan.arrays.back().stage != stage) {
-      SlurmArray a;
-      a.stage = stage;
-      a.list = plan.submission + "/" + stage + ".json";
-      a.script = plan.submission + "/" + stage + ".sbatch";
-      plan.arrays.push_back(a);
+    auto same = [&](const SlurmArray& a) { return a.stage == stage && a.scenario == job.scenario && a.after == after; };
+    auto it = std::find_if(plan.arrays.begin(), plan.arrays.end(), same);
+    if (it == plan.arrays.end()) {
+      plan.arrays.push_back({.stage = stage, .scenario = job.scenario, .after = after});
+      it = std::prev(plan.arrays.end());
     }
-    plan.arrays.back().tasks.push_back({job.id(), forced});
+    array_of[i] = static_cast<std::size_t>(it - plan.arrays.begin());
+    it->tasks.push_back({job.id(), forced});
+  }
+  for (SlurmArray& a : plan.arrays) {
+    a.name = a.stage + "-" + a.scenario;
+    const bool twin = std::count_if(plan.arrays.begin(), plan.arrays.end(), [&](const SlurmArray& b) {
+                        return b.stage == a.stage && b.scenario == a.scenario;
+                      }) > 1;
+    if (twin && a.after.empty()) a.name += "-independent";
+    a.list = plan.submission + "/" + a.name + ".json";
+    a.script = plan.submission + "/" + a.name + ".sbatch";
   }
   return plan;
 }
@@ -169,16 +187,16 @@ std::string sbatch_script(const SweepFolder& folder, const SlurmPlan& plan, std:
   const std::string base = dir.size() > 1 && dir.back() == '/' ? dir.substr(0, dir.size() - 1) : dir;
   std::ostringstream s;
   s << "#!/bin/bash\n"
-    << "# rapid sweep " << folder.grid.name << ", stage " << a + 1 << "/" << plan.arrays.size() << ", "
-    << array.stage << ": " << array.tasks.size() << " task" << (array.tasks.size() == 1 ? "" : "s")
+    << "# rapid sweep " << folder.grid.name << ", array " << a + 1 << "/" << plan.arrays.size() << ", "
+    << array.name << ": " << array.tasks.size() << " task" << (array.tasks.size() == 1 ? "" : "s")
     << " (written by `rapid sweep --backend slurm`).\n"
     << "# Task I runs job I of " << array.list << " (in the sweep folder).\n"
     << "# The job's own output goes to its log.txt, the task's to the --output file.\n"
     << "# Progress: rapid status " << base << "\n"
-    << "#SBATCH --job-name=rapid-" << folder.grid.name << "-" << array.stage << "\n"
+    << "#SBATCH --job-name=rapid-" << folder.grid.name << "-" << array.name << "\n"
     << "#SBATCH --array=0-" << array.tasks.size() - 1 << "%" << o.array_parallelism << "\n"
     << "#SBATCH --chdir=" << base << "\n"
-    << "#SBATCH --output=" << base << "/" << kSlurmDir << "/" << array.stage << "_%A_%a.out\n"
+    << "#SBATCH --output=" << base << "/" << kSlurmDir << "/" << array.name << "_%A_%a.out\n"
     << "#SBATCH --ntasks=1\n"
     << "#SBATCH --cpus-per-task=" << o.cpus_per_task << "\n";
   if (!o.partition.empty()) s << "#SBATCH --partition=" << o.partition << "\n";
@@ -204,15 +222,16 @@ void submit_slurm_plan(const SweepFolder& folder, SlurmPlan& plan, const SlurmOp
     all["submissions"].push_back(record);
     write_file_atomic(folder.path(kSubmissions).string(), all.dump(1));
   };
-  std::string after;
   for (std::size_t a = 0; a < plan.arrays.size(); ++a) {
     SlurmArray& array = plan.arrays[a];
+    std::string after;
+    for (std::size_t k : array.after) after += (after.empty() ? "" : ":") + plan.arrays[k].job_id;
     write_task_list(folder.path(array.list), array.stage, array.tasks);
     write_file_atomic(folder.path(array.script).string(), sbatch_script(folder, plan, a, after, options));
     const CommandResult r = run_command({"sbatch", "--parsable", folder.path(array.script).string()});
     std::string id = r.out.substr(0, r.out.find_first_of(";\n"));  // "id" or "id;cluster"
     if (r.exit_code != 0 || id.empty() || id.find_first_not_of("0123456789") != std::string::npos) {
-      std::string message = "sbatch failed for the " + array.stage + " array: " +
+      std::string message = "sbatch failed for the " + array.name + " array: " +
                             first_line(r.err.empty() ? r.out : r.err);
       if (record["arrays"].empty()) {
         fs::remove_all(folder.path(plan.submission));  // nothing was submitted: leave no trace
@@ -220,18 +239,19 @@ void submit_slurm_plan(const SweepFolder& folder, SlurmPlan& plan, const SlurmOp
         save();
         message += " (already submitted:";
         for (const auto& done : record["arrays"])
-          message.append(" ").append(done["stage"].get<std::string>()).append(" ").append(done["job_id"].get<std::string>());
+          message.append(" ").append(done["name"].get<std::string>()).append(" ").append(done["job_id"].get<std::string>());
         message += "; scancel them or let them run, then submit again)";
       }
       throw SlurmError(message);
     }
     array.job_id = id;
     record["arrays"].push_back({{"stage", array.stage},
+                                {"scenario", array.scenario},
+                                {"name", array.name},
                                 {"job_id", id},
                                 {"tasks", array.tasks.size()},
                                 {"after", after.empty() ? nlohmann::json(nullptr) : nlohmann::json(after)},
                                 {"list", array.list}});
-    after = id;
   }
   save();
 }

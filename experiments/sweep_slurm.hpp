@@ -1,17 +1,21 @@
 // The Slurm backend of `rapid sweep` (SPEC §3, docs/cluster.md): instead of running the job graph
-// here, submit one job array per stage — reference agents, datasets, cells — each waiting for the
-// one before with --dependency=afterok, and return at once. Each array task runs one job of the
-// sweep folder by index (sweep_task.hpp), so results, resume and `rapid status` work from the
-// folder's files alone: no sacct, no scontrol (finished jobs leave it after MinJobAge).
+// here, submit job arrays and return at once: per scenario, one array per stage — reference
+// agent, datasets, the cells that need those datasets — each waiting for the one before with
+// --dependency=afterok, and one array of the cells that wait for nothing (DDPG, or prior cells
+// whose datasets are already built). Each array task runs one job of the sweep folder by index
+// (sweep_task.hpp), so results, resume and `rapid status` work from the folder's files alone: no
+// sacct, no scontrol (finished jobs leave it after MinJobAge).
 //
-// Chaining whole stages with afterok is deliberately coarse: if any reference task fails, the
-// later arrays are cancelled (--kill-on-invalid-dep=yes) instead of waiting forever; `rapid
-// status` shows the failure and the blocked jobs, and submitting again runs exactly what is left.
+// afterok waits for every task of an array: if a scenario's reference task fails, that scenario's
+// later arrays are cancelled (--kill-on-invalid-dep=yes) instead of waiting forever, while the
+// other scenarios go on; `rapid status` shows the failure and the blocked jobs, and submitting
+// again runs exactly what is left.
 //
 // Files, inside the sweep folder:
-//   slurm/<submission>/<stage>.json     the task list: array index → job (sweep_task.hpp)
-//   slurm/<submission>/<stage>.sbatch   the script submitted for that stage
-//   slurm/<stage>_<array id>_<index>.out  each task's own output (the job's output is in its log.txt)
+//   slurm/<submission>/<array>.json     the task list: array index → job (sweep_task.hpp)
+//   slurm/<submission>/<array>.sbatch   the script submitted for that array
+//   slurm/<array>_<array id>_<index>.out  each task's own output (the job's output is in its log.txt)
+// where <array> is e.g. references-merge, datasets-merge, cells-merge, cells-merge-independent.
 //   slurm/submissions.json              every submission: when, which arrays, their job ids
 #pragma once
 
@@ -43,6 +47,9 @@ class SlurmError : public std::runtime_error {
 
 struct SlurmArray {
   std::string stage;             // references | datasets | cells
+  std::string scenario;
+  std::string name;              // "<stage>-<scenario>", "-independent" added when needed to tell apart
+  std::vector<std::size_t> after;  // the arrays (indices into the plan) this one waits for (afterok)
   std::vector<TaskEntry> tasks;  // array index → job
   std::string list;              // the task list file, relative to the sweep folder
   std::string script;            // the sbatch script file, relative to the sweep folder
@@ -51,7 +58,7 @@ struct SlurmArray {
 
 struct SlurmPlan {
   std::string submission;          // slurm/<UTC time>, the folder of this submission's lists
-  std::vector<SlurmArray> arrays;  // the stages that have work, in order
+  std::vector<SlurmArray> arrays;  // the arrays that have work; every array after those it waits for
   std::size_t needed = 0;          // jobs the selection needs
   std::size_t done = 0;            // of which already done (not submitted)
   std::size_t tasks() const;
@@ -62,12 +69,13 @@ struct SlurmPlan {
 // known then, so their tasks check again and skip if so. Reads the folder, writes nothing.
 SlurmPlan plan_slurm_sweep(const SweepFolder& folder, const Selection& selection, bool force);
 
-// The sbatch script of plan.arrays[a]; `after` is the job id it waits for (afterok), or empty.
+// The sbatch script of plan.arrays[a]; `after` is the job ids it waits for (afterok), colon-separated,
+// or empty.
 std::string sbatch_script(const SweepFolder& folder, const SlurmPlan& plan, std::size_t a, const std::string& after,
                           const SlurmOptions& options);
 
-// Writes the task lists and scripts, submits the arrays in stage order (each afterok on the one
-// before), records them in slurm/submissions.json and sets each array's job_id. Throws SlurmError
+// Writes the task lists and scripts, submits the arrays in order (each afterok on those it waits
+// for), records them in slurm/submissions.json and sets each array's job_id. Throws SlurmError
 // if sbatch fails; arrays submitted before the failure stay submitted (the message names them).
 void submit_slurm_plan(const SweepFolder& folder, SlurmPlan& plan, const SlurmOptions& options);
 

@@ -111,7 +111,7 @@ bool slurm_available(std::string& why) {
 
 std::vector<std::string> submitted_ids(const std::string& output) {
   std::vector<std::string> ids;
-  const std::regex line(R"(^  \w+: job (\d+), \d+ tasks?$)");
+  const std::regex line(R"(^  [\w+-]+: job (\d+), \d+ tasks?$)");
   std::istringstream in(output);
   for (std::string l; std::getline(in, l);) {
     std::smatch m;

@@ -5,7 +5,8 @@
 //    Slurm as through the local backend, and `rapid status` sees every job ok from the files.
 //  - A task that fails shows in `rapid status` (with its retries) and runs again, alone, on the
 //    next submission.
-//  - A failed reference agent stops the later arrays (afterok); status shows the failure and the
+//  - A failed reference agent stops its scenario's later arrays (afterok) and nothing else: the
+//    other scenario and the cells that need no dataset run; status shows the failure and the
 //    blocked jobs, and the next submission runs everything that is left.
 #include <gtest/gtest.h>
 
@@ -49,12 +50,12 @@ class SlurmCluster : public ::testing::Test {
     std::ifstream in(path, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), {});
   }
-  // The task output of the first task of the array a submission printed for `stage`.
-  static std::string task_output(const fs::path& sweep, const std::string& stage, const Result& submission) {
-    const auto at = submission.output.find("  " + stage + ": job ");
+  // The task output of the first task of the array `name` (e.g. cells-merge) a submission printed.
+  static std::string task_output(const fs::path& sweep, const std::string& name, const Result& submission) {
+    const auto at = submission.output.find("  " + name + ": job ");
     if (at == std::string::npos) return "";
-    const std::string id = submission.output.substr(at + stage.size() + 8, submission.output.find(',', at) - at - stage.size() - 8);
-    return slurp(sweep / "slurm" / (stage + "_" + id + "_0.out"));
+    const std::string id = submission.output.substr(at + name.size() + 8, submission.output.find(',', at) - at - name.size() - 8);
+    return slurp(sweep / "slurm" / (name + "_" + id + "_0.out"));
   }
 
   testing::ScratchDir dir_;
@@ -89,7 +90,7 @@ TEST_F(SlurmCluster, GridRecordsEqualTheLocalBackends) {
     EXPECT_EQ(outcome["state"], "ok") << job["job"];
     EXPECT_EQ(outcome["attempts"], 1) << job["job"];
   }
-  EXPECT_NE(task_output(slurm, "cells", s).find("rapid sweep task: ok "), std::string::npos);
+  EXPECT_NE(task_output(slurm, "cells-lane-drop", s).find("rapid sweep task: ok "), std::string::npos) << s.output;
 
   const Result again = run_rapid("sweep " + grid.string() + " --backend slurm --out " + slurm.string());
   EXPECT_EQ(again.exit_code, 0) << again.output;
@@ -109,8 +110,9 @@ TEST_F(SlurmCluster, AFailedTaskShowsInStatusAndRunsAgainOnTheNextSubmission) {
   const std::string good = slurp(dataset);
   std::ofstream(dataset, std::ios::trunc) << "not an HDF5 file";
   const Result failing = submit_and_wait(grid, sweep, "--only algo=rapid-rl,seed=0");
-  EXPECT_NE(task_output(sweep, "cells", failing).find("failed pendulum/initial/rapid-rl/seed0 after 2 attempts"),
-            std::string::npos);
+  EXPECT_NE(task_output(sweep, "cells-pendulum", failing).find("failed pendulum/initial/rapid-rl/seed0 after 2 attempts"),
+            std::string::npos)
+      << failing.output;
   std::ofstream(dataset, std::ios::trunc | std::ios::binary) << good;
 
   json st = status(sweep);
@@ -132,26 +134,30 @@ TEST_F(SlurmCluster, AFailedTaskShowsInStatusAndRunsAgainOnTheNextSubmission) {
   EXPECT_NE(after.at("jobs/pendulum/initial/rapid-rl/seed0"), before.at("jobs/pendulum/initial/rapid-rl/seed0"));
 }
 
-TEST_F(SlurmCluster, AFailedReferenceStopsTheLaterArraysUntilTheNextSubmission) {
+TEST_F(SlurmCluster, AFailedReferenceStopsOnlyItsScenarioUntilTheNextSubmission) {
   json g = pendulum_grid("blocked", {"rapid-rl", "ddpg"}, {0}, 400);
+  g["scenarios"] = {"pendulum", "merge"};
   g["max_retries"] = 0;
   const fs::path grid = dir_.path() / "blocked.json", sweep = dir_.path() / "sweep";
   write_json(grid, g);
-  // A file where the scenario's dataset folder belongs: the reference agent cannot be saved.
+  // A file where the pendulum's dataset folder belongs: its reference agent cannot be saved.
   fs::create_directories(sweep / "datasets");
   std::ofstream(sweep / "datasets/pendulum") << "in the way";
   const Result first = submit_and_wait(grid, sweep);
-  ASSERT_EQ(submitted_ids(first.output).size(), 3u) << first.output;
+  // Per scenario: references, datasets, the rapid-rl cell after them, the ddpg cell on its own.
+  ASSERT_EQ(submitted_ids(first.output).size(), 8u) << first.output;
 
   const json st = status(sweep);
-  EXPECT_EQ(st["counts"]["failed"], 1) << st.dump(1);   // the reference
-  EXPECT_EQ(st["counts"]["blocked"], 2) << st.dump(1);  // the dataset job and the rapid-rl cell
-  EXPECT_EQ(st["counts"]["pending"], 1) << st.dump(1);  // ddpg: its array was cancelled (afterok)
-  EXPECT_FALSE(fs::exists(sweep / "jobs/pendulum/none/ddpg/seed0/record.json"));
+  EXPECT_EQ(st["counts"]["failed"], 1) << st.dump(1);   // the pendulum reference
+  EXPECT_EQ(st["counts"]["blocked"], 2) << st.dump(1);  // its dataset job and its rapid-rl cell
+  EXPECT_EQ(st["counts"]["ok"], 5) << st.dump(1);       // the pendulum ddpg cell and all of merge
+  EXPECT_TRUE(fs::exists(sweep / "jobs/pendulum/none/ddpg/seed0/record.json"));
+  EXPECT_TRUE(fs::exists(sweep / "jobs/merge/initial/rapid-rl/seed0/record.json"));
 
   fs::remove(sweep / "datasets/pendulum");
-  submit_and_wait(grid, sweep);
-  EXPECT_EQ(status(sweep)["counts"]["ok"], 4) << status(sweep).dump(1);
+  const Result second = submit_and_wait(grid, sweep);
+  EXPECT_NE(second.output.find("submitted 3 jobs to Slurm (5 already done)"), std::string::npos) << second.output;
+  EXPECT_EQ(status(sweep)["counts"]["ok"], 8) << status(sweep).dump(1);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // `rapid sweep --backend slurm` without a cluster (issue 8): --dry-run prints one throttled array
-// per stage chained with afterok and writes nothing; a submission (to a fake sbatch) chains the
-// real ids, records them and writes the task lists; a folder whose arrays are still queued is
+// per scenario and stage chained with afterok (cells that need no dataset in an array of their
+// own) and writes nothing; a submission (to a fake sbatch) chains the real ids, records them and writes the task lists; a folder whose arrays are still queued is
 // refused; a resubmission holds only the jobs that are not done; bad options are usage errors.
 #include <gtest/gtest.h>
 
@@ -44,18 +44,22 @@ TEST_F(SlurmSubmit, DryRunPrintsThrottledArraysChainedWithAfterokAndWritesNothin
   const Result r = sweep("--dry-run --array-parallelism 3 --partition short --time 0:10:00 --sbatch-arg=--mem=2G");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string& out = r.output;
-  EXPECT_EQ(occurrences(out, "#!/bin/bash\n"), 3u) << out;
-  EXPECT_NE(out.find("#SBATCH --array=0-0%3\n"), std::string::npos) << out;  // the reference agent
-  EXPECT_NE(out.find("#SBATCH --array=0-3%3\n"), std::string::npos) << out;  // four cells
-  EXPECT_NE(out.find("#SBATCH --dependency=afterok:<job id of the references array>\n"), std::string::npos) << out;
-  EXPECT_NE(out.find("#SBATCH --dependency=afterok:<job id of the datasets array>\n"), std::string::npos) << out;
-  EXPECT_EQ(occurrences(out, "#SBATCH --kill-on-invalid-dep=yes\n"), 2u) << out;
+  EXPECT_EQ(occurrences(out, "#!/bin/bash\n"), 4u) << out;
+  EXPECT_EQ(occurrences(out, "#SBATCH --array=0-0%3\n"), 2u) << out;  // the reference agent, the datasets
+  EXPECT_EQ(occurrences(out, "#SBATCH --array=0-1%3\n"), 2u) << out;  // two rapid-rl cells, two ddpg cells
+  EXPECT_NE(out.find("#SBATCH --dependency=afterok:<job id of the references-pendulum array>\n"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("#SBATCH --dependency=afterok:<job id of the datasets-pendulum array>\n"), std::string::npos)
+      << out;
+  EXPECT_EQ(occurrences(out, "#SBATCH --kill-on-invalid-dep=yes\n"), 2u) << out;  // ddpg waits for nothing
   EXPECT_NE(out.find("#SBATCH --chdir=" + sweep_.string() + "\n"), std::string::npos) << out;
-  EXPECT_NE(out.find("#SBATCH --output=" + sweep_.string() + "/slurm/cells_%A_%a.out\n"), std::string::npos) << out;
+  EXPECT_NE(out.find("#SBATCH --output=" + sweep_.string() + "/slurm/cells-pendulum_%A_%a.out\n"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("cells-pendulum-independent: 2 tasks"), std::string::npos) << out;
   EXPECT_NE(out.find("#SBATCH --partition=short\n#SBATCH --time=0:10:00\n"), std::string::npos) << out;
   EXPECT_NE(out.find("#SBATCH --mem=2G\n"), std::string::npos) << out;
   EXPECT_NE(out.find("' sweep . --run-job \"$SLURM_ARRAY_TASK_ID\" --job-list 'slurm/"), std::string::npos) << out;
-  EXPECT_NE(out.find("#   task 3: pendulum/none/ddpg/seed1"), std::string::npos) << out;
+  EXPECT_NE(out.find("#   task 1: pendulum/none/ddpg/seed1"), std::string::npos) << out;
   EXPECT_FALSE(fs::exists(sweep_)) << "a dry run writes nothing";
   EXPECT_TRUE(fake_.submitted().empty());
 }
@@ -63,26 +67,32 @@ TEST_F(SlurmSubmit, DryRunPrintsThrottledArraysChainedWithAfterokAndWritesNothin
 TEST_F(SlurmSubmit, SubmitsOneArrayPerStageEachAfterTheOneBefore) {
   const Result r = sweep("--array-parallelism 2");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const std::vector<std::string> ids = {"100", "101", "102"};
+  const std::vector<std::string> ids = {"100", "101", "102", "103"};
   EXPECT_EQ(submitted_ids(r.output), ids) << r.output;
   ASSERT_EQ(fake_.submitted(), ids);
   EXPECT_EQ(fake_.script("100").find("--dependency"), std::string::npos);
   EXPECT_NE(fake_.script("101").find("#SBATCH --dependency=afterok:100\n"), std::string::npos) << fake_.script("101");
   EXPECT_NE(fake_.script("102").find("#SBATCH --dependency=afterok:101\n"), std::string::npos) << fake_.script("102");
-  EXPECT_NE(fake_.script("102").find("#SBATCH --array=0-3%2\n"), std::string::npos) << fake_.script("102");
+  EXPECT_NE(fake_.script("102").find("#SBATCH --array=0-1%2\n"), std::string::npos) << fake_.script("102");
+  EXPECT_EQ(fake_.script("103").find("--dependency"), std::string::npos) << fake_.script("103");  // ddpg
 
   const json submissions = read_json(sweep_ / "slurm/submissions.json");
   ASSERT_EQ(submissions["submissions"].size(), 1u);
   const json& arrays = submissions["submissions"][0]["arrays"];
-  ASSERT_EQ(arrays.size(), 3u);
+  ASSERT_EQ(arrays.size(), 4u);
   EXPECT_EQ(arrays[2]["stage"], "cells");
+  EXPECT_EQ(arrays[2]["scenario"], "pendulum");
+  EXPECT_EQ(arrays[2]["name"], "cells-pendulum");
   EXPECT_EQ(arrays[2]["job_id"], "102");
   EXPECT_EQ(arrays[2]["after"], "101");
-  EXPECT_EQ(arrays[2]["tasks"], 4);
+  EXPECT_EQ(arrays[2]["tasks"], 2);
   const json cells = read_json(sweep_ / arrays[2]["list"].get<std::string>());
-  ASSERT_EQ(cells["jobs"].size(), 4u);
+  ASSERT_EQ(cells["jobs"].size(), 2u);
   EXPECT_EQ(cells["jobs"][0]["job"], "pendulum/initial/rapid-rl/seed0");
-  EXPECT_EQ(cells["jobs"][3]["job"], "pendulum/none/ddpg/seed1");
+  EXPECT_EQ(arrays[3]["name"], "cells-pendulum-independent");
+  EXPECT_TRUE(arrays[3]["after"].is_null());
+  const json independent = read_json(sweep_ / arrays[3]["list"].get<std::string>());
+  EXPECT_EQ(independent["jobs"][1]["job"], "pendulum/none/ddpg/seed1");
   EXPECT_TRUE(fs::exists(sweep_ / "grid.json"));
 }
 
@@ -92,12 +102,12 @@ TEST_F(SlurmSubmit, RefusesToSubmitWhileEarlierArraysAreQueued) {
   const Result again = sweep();
   EXPECT_EQ(again.exit_code, 2) << again.output;
   EXPECT_NE(again.output.find("still has Slurm jobs queued or running (101)"), std::string::npos) << again.output;
-  EXPECT_EQ(fake_.submitted().size(), 3u);
+  EXPECT_EQ(fake_.submitted().size(), 4u);
 
   fake_.set_queue({"55"});  // somebody else's job
   const Result later = sweep();
   EXPECT_EQ(later.exit_code, 0) << later.output;
-  EXPECT_EQ(fake_.submitted().size(), 6u) << "nothing ran, so everything is submitted again";
+  EXPECT_EQ(fake_.submitted().size(), 8u) << "nothing ran, so everything is submitted again";
 }
 
 TEST_F(SlurmSubmit, ResubmitsOnlyWhatIsNotDone) {
@@ -136,7 +146,7 @@ TEST_F(SlurmSubmit, AnSbatchFailureIsReportedAndLeavesNoSubmissionBehind) {
   fake_.fail_submissions(true);
   const Result r = sweep();
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_NE(r.output.find("sbatch failed for the references array: sbatch: error: Batch job submission failed: "
+  EXPECT_NE(r.output.find("sbatch failed for the references-pendulum array: sbatch: error: Batch job submission failed: "
                           "Invalid partition name specified"),
             std::string::npos)
       << r.output;

@@ -24,11 +24,16 @@ class SlurmTask : public ::testing::Test {
     grid_["max_retries"] = 1;
     write_json(grid_path_, grid_);
   }
-  // Submits to the fake sbatch; returns the task list of the last array (the cells).
+  // Submits to the fake sbatch; returns the task list of the cells-pendulum array (the cells that
+  // need the datasets, or all cells once the datasets are there).
   std::string submit() {
     const Result r = run_rapid("sweep " + grid_path_.string() + " --backend slurm --out " + sweep_.string());
     EXPECT_EQ(r.exit_code, 0) << r.output;
-    return read_json(sweep_ / "slurm/submissions.json")["submissions"].back()["arrays"].back()["list"];
+    const json submissions = read_json(sweep_ / "slurm/submissions.json");
+    for (const json& a : submissions["submissions"].back()["arrays"])
+      if (a["name"] == "cells-pendulum") return a["list"];
+    ADD_FAILURE() << "no cells-pendulum array in " << r.output;
+    return "";
   }
   Result task(const std::string& list, int index) {
     return run_rapid("sweep " + sweep_.string() + " --run-job " + std::to_string(index) + " --job-list " + list);
