@@ -152,11 +152,7 @@ void Mlp::forward_layer(Layer& l) {
       Eigen::Map<const Vec> shift(params_.data() + l.b_off, l.out);
       Mat& xhat = acts_[l.xhat];
       l.tmp1 = x.colwise().mean();
-      if (&xhat == &x) {
-        xhat.rowwise() -= l.tmp1;
-      } else {
-        xhat = x.rowwise() - l.tmp1;
-      }
+      xhat = x.rowwise() - l.tmp1;  // coefficient-wise, so also right when xhat is x
       l.inv_std = (xhat.array().square().colwise().mean() + kLayerNormEps).rsqrt().matrix();
       xhat.array().rowwise() *= l.inv_std.array();
       y = xhat;
@@ -164,19 +160,12 @@ void Mlp::forward_layer(Layer& l) {
       y.colwise() += shift;
       break;
     }
+    // Coefficient-wise, so also right when y is x (in place).
     case LayerKind::kReLU:
-      if (&y == &x) {
-        y = y.cwiseMax(0.0f);
-      } else {
-        y = x.cwiseMax(0.0f);
-      }
+      y = x.cwiseMax(0.0f);
       break;
     case LayerKind::kTanh:
-      if (&y == &x) {
-        y = y.array().tanh().matrix();
-      } else {
-        y = x.array().tanh().matrix();
-      }
+      y = x.array().tanh().matrix();
       break;
   }
 }
