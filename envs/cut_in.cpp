@@ -7,8 +7,9 @@ namespace rapid {
 namespace {
 using libsumo::Vehicle;
 
-DrivingConfig cut_in_config() {
+DrivingConfig cut_in_config(const ScenarioSettings& settings) {
   DrivingConfig c;
+  c.settings = settings;
   c.scenario = "cut-in";
   c.edges = {"road"};
   c.ego_route = "main";
@@ -18,10 +19,15 @@ DrivingConfig cut_in_config() {
   c.epsilon = 0.6f;
   return c;
 }
-// Obstacle ids are "obs0" … "obs5": the digit is the index.
-constexpr const char* kObstacleIds[CutInEnv::kObstacles] = {"obs0", "obs1", "obs2", "obs3", "obs4", "obs5"};
+// Obstacle ids are "obs<k>"; returns k, or -1 for any other vehicle.
 int obstacle_index(const std::string& id) {
-  return id.size() == 4 && id.compare(0, 3, "obs") == 0 ? id[3] - '0' : -1;
+  if (id.size() < 4 || id.compare(0, 3, "obs") != 0) return -1;
+  int k = 0;
+  for (std::size_t i = 3; i < id.size(); ++i) {
+    if (id[i] < '0' || id[i] > '9') return -1;
+    k = 10 * k + (id[i] - '0');
+  }
+  return k;
 }
 // Obstacles only change lane when told to, and then even into a tight gap (a real cut-in):
 // TraCI requests are refused only if they would overlap a vehicle.
@@ -29,22 +35,30 @@ constexpr int kObstacleLaneChangeMode = 256;
 constexpr double kCutInDuration = 3.0;  // s the cut-in request stays active
 }  // namespace
 
-CutInEnv::CutInEnv() : DrivingEnv(cut_in_config()) {}
+CutInEnv::CutInEnv(const ScenarioSettings& settings) : DrivingEnv(cut_in_config(settings)) {
+  const int n = settings.obstacles;
+  for (int k = 0; k < n; ++k) id_.push_back("obs" + std::to_string(k));
+  speed_.assign(n, 0.0);
+  trigger_gap_.assign(n, 0.0);
+  cutter_.assign(n, 0);
+  cut_.assign(n, 0);
+}
 
 void CutInEnv::populate(Rng& rng) {
   // At time 0, before any human: spread ahead of where the ego will enter, in random lanes.
   double pos = rng.uniform(60.0, 160.0);
   const int lanes = road().edge("road").lanes;
-  for (int k = 0; k < kObstacles; ++k) {
-    speed_[k] = rng.uniform(10.0, 16.0);
+  const ScenarioSettings& settings = config().settings;
+  for (std::size_t k = 0; k < id_.size(); ++k) {
+    speed_[k] = rng.uniform(settings.obstacle_speed_min, settings.obstacle_speed_max);
     cutter_[k] = rng.uniform() < 0.6;
     trigger_gap_[k] = rng.uniform(8.0, 25.0);
     cut_[k] = false;
     const int lane = static_cast<int>(rng.index(lanes));
-    Vehicle::add(kObstacleIds[k], "main", "obstacle", "now", std::to_string(lane), std::to_string(pos),
+    Vehicle::add(id_[k], "main", "obstacle", "now", std::to_string(lane), std::to_string(pos),
                  std::to_string(speed_[k]));
-    Vehicle::setMaxSpeed(kObstacleIds[k], speed_[k]);
-    Vehicle::setLaneChangeMode(kObstacleIds[k], kObstacleLaneChangeMode);
+    Vehicle::setMaxSpeed(id_[k], speed_[k]);
+    Vehicle::setLaneChangeMode(id_[k], kObstacleLaneChangeMode);
     pos += rng.uniform(80.0, 180.0);
   }
   pending_ = -1;
@@ -64,8 +78,8 @@ void CutInEnv::after_observe() {
     const Neighbor& n = e.leader[side];
     if (!n.present) continue;
     const int k = obstacle_index(n.id);
-    if (k < 0 || !cutter_[k] || cut_[k] || n.gap > trigger_gap_[k] || e.speed <= n.speed) continue;
-    Vehicle::changeLane(kObstacleIds[k], e.lane, kCutInDuration);
+    if (k < 0 || k >= static_cast<int>(id_.size()) || !cutter_[k] || cut_[k] || n.gap > trigger_gap_[k] || e.speed <= n.speed) continue;
+    Vehicle::changeLane(id_[k], e.lane, kCutInDuration);
     cut_[k] = true;
     pending_ = k;
     break;

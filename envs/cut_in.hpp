@@ -4,7 +4,7 @@
 // brake for the cut-ins and overtake the obstacles to reach its desired speed.
 #pragma once
 
-#include <array>
+#include <vector>
 
 #include "envs/driving_env.hpp"
 
@@ -12,12 +12,11 @@ namespace rapid {
 
 class CutInEnv final : public DrivingEnv {
  public:
-  static constexpr int kObstacles = 6;
-  CutInEnv();
+  explicit CutInEnv(const ScenarioSettings& settings);
 
   // For tests: the obstacles' constant speeds and how many cut-ins ended with the obstacle as the
   // ego's leader, this episode.
-  const std::array<double, kObstacles>& obstacle_speeds() const { return speed_; }
+  const std::vector<double>& obstacle_speeds() const { return speed_; }
   int completed_cut_ins() const { return completed_; }
 
  protected:
@@ -26,8 +25,9 @@ class CutInEnv final : public DrivingEnv {
   void after_observe() override;
 
  private:
-  std::array<double, kObstacles> speed_{}, trigger_gap_{};
-  std::array<bool, kObstacles> cutter_{}, cut_{};
+  std::vector<std::string> id_;  // "obs0", "obs1", …: the number is the index
+  std::vector<double> speed_, trigger_gap_;
+  std::vector<char> cutter_, cut_;
   int pending_ = -1;  // obstacle commanded to cut in during the last decision
   int completed_ = 0;
 };

@@ -1,8 +1,15 @@
 #include "envs/driving_env.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <libsumo/libsumo.h>
+#include <sstream>
 #include <stdexcept>
 
 namespace rapid {
@@ -25,18 +32,64 @@ enum Side { kLeft = 0, kCurrent = 1, kRight = 2 };
 // Stop this far before the road's exit (an ego that reaches it leaves the simulation).
 constexpr double kRoadEndMargin = 50.0;
 
+// The roads' speed limit, and the desired speed the ego vType's speedFactor encodes on it
+// (envs/networks/vtypes.add.xml).
+constexpr double kSpeedLimit = 30.0;
+constexpr double kEgoTypeDesiredSpeed = 25.0;
+
 float clip1(double x) { return static_cast<float>(std::clamp(x, -1.0, 1.0)); }
+
+// A Bernoulli flow's probability per second for `veh_per_hour`, spelled the way the route files
+// always spelled it (1980 veh/h → "0.55").
+std::string per_second(double veh_per_hour) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", veh_per_hour / 3600.0);
+  return text;
+}
+
+// The scenario's routes (its .rou.xml, whose flows say probability="INFLOW" or "RAMP_INFLOW")
+// with the configured inflows filled in, written to a temporary file of this process: SUMO reads
+// routes from files only.
+std::string write_route_file(const std::string& template_path, const ScenarioSettings& settings) {
+  std::ifstream in(template_path);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string xml = text.str();
+  for (const auto& [token, value] : {std::pair{std::string("\"INFLOW\""), settings.inflow},
+                                     std::pair{std::string("\"RAMP_INFLOW\""), settings.ramp_inflow}})
+    for (auto at = xml.find(token); at != std::string::npos; at = xml.find(token, at))
+      xml.replace(at, token.size(), "\"" + per_second(value) + "\"");
+  static std::atomic<int> counter{0};
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("rapid-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" +
+                     std::filesystem::path(template_path).filename().string());
+  std::ofstream out(path);
+  out << xml;
+  out.close();
+  if (!out) throw std::runtime_error("cannot write the route file " + path.string());
+  return path.string();
+}
 }  // namespace
 
 DrivingEnv::DrivingEnv(DrivingConfig config) : config_(std::move(config)) {
+  validate_scenario_settings(config_.scenario, config_.settings);
+  weights_ = driving::reward_weights(config_.settings.reward);
   // File names are resolved on reset, so a missing network is reported when it matters.
   session_config_.step_length = config_.step_length;
 }
 
+DrivingEnv::~DrivingEnv() {
+  if (!route_file_.empty()) std::filesystem::remove(route_file_);
+}
+
 void DrivingEnv::reset(std::uint64_t seed, VecRef obs) {
   const std::string& s = config_.scenario;
-  session_config_.net_file = network_file(s, s + ".net.xml");
-  session_config_.route_files = {network_file(s, s + ".rou.xml")};
+  const ScenarioSettings& settings = config_.settings;
+  const std::string variant = settings.network == "short" ? "" : settings.network + "/";
+  session_config_.net_file = network_file(s, variant + s + ".net.xml");
+  if (route_file_.empty()) route_file_ = write_route_file(network_file(s, variant + s + ".rou.xml"), settings);
+  session_config_.route_files = {route_file_};
+  session_config_.max_depart_delay = settings.max_depart_delay;
   session_config_.additional_files = {network_file("", "vtypes.add.xml")};
   session_config_.seed = seed;
   session_.start(session_config_);
@@ -49,7 +102,7 @@ void DrivingEnv::reset(std::uint64_t seed, VecRef obs) {
       road_read_ = true;
     }
     populate(rng);
-    const int warmup = config_.warmup_steps + static_cast<int>(rng.index(config_.warmup_jitter + 1));
+    const int warmup = settings.traffic_warmup + static_cast<int>(rng.index(config_.warmup_jitter + 1));
     for (int i = 0; i < warmup; ++i) Simulation::step();
     const int lane = ego_depart_lane(rng);
     Vehicle::add(kEgo, config_.ego_route, "ego", "now", std::to_string(lane), "base", "max");
@@ -61,9 +114,12 @@ void DrivingEnv::reset(std::uint64_t seed, VecRef obs) {
     if (!builtin_) {
       Vehicle::setSpeedMode(kEgo, kAgentSpeedMode);
       Vehicle::setLaneChangeMode(kEgo, kAgentLaneChangeMode);
+    } else if (std::abs(settings.desired_speed - kEgoTypeDesiredSpeed) > 1e-9) {
+      // SUMO's driver aims at the configured v_des (the ego vType's speedFactor encodes 25 m/s).
+      Vehicle::setSpeedFactor(kEgo, settings.desired_speed / kSpeedLimit);
     }
     t_ = 0;
-    since_lane_change_ = config_.lane_change_interval;
+    since_lane_change_ = settings.lane_change_interval;
     read_state();
     after_observe();
   } catch (...) {
@@ -80,7 +136,7 @@ StepResult DrivingEnv::step(const ConstVecRef& action, VecRef obs) {
   try {
     const Road::Edge& edge = road_.edge(ego_.edge);
     const int lane_before = ego_.global_lane;
-    const double decision_time = config_.action_repeat * config_.step_length;
+    const double decision_time = config_.settings.action_repeat * config_.step_length;
     bool commanded = false, failed = false;
     double accel = 0.0;
     if (!builtin_) {
@@ -88,7 +144,7 @@ StepResult DrivingEnv::step(const ConstVecRef& action, VecRef obs) {
       const int dir = action[1] > 1.0f / 3.0f ? 1 : (action[1] < -1.0f / 3.0f ? -1 : 0);
       if (dir != 0) {
         const int target = ego_.lane + dir;
-        if (target < 0 || target >= edge.lanes || since_lane_change_ < config_.lane_change_interval) {
+        if (target < 0 || target >= edge.lanes || since_lane_change_ < config_.settings.lane_change_interval) {
           failed = true;
         } else {
           // Expires within this decision, so a refused request does not linger into the next.
@@ -99,7 +155,7 @@ StepResult DrivingEnv::step(const ConstVecRef& action, VecRef obs) {
     }
     bool collision = false;
     const double dt = config_.step_length;
-    for (int k = 1; k <= config_.action_repeat && !collision; ++k) {
+    for (int k = 1; k <= config_.settings.action_repeat && !collision; ++k) {
       // The commanded acceleration, exactly: one setSpeed per SUMO step (slowDown's ramp ends a
       // step late). It holds until the next setSpeed, so the ego never falls back to SUMO's driver.
       if (!builtin_) Vehicle::setSpeed(kEgo, std::clamp(ego_.speed + accel * dt * k, 0.0, config_.speed_norm));
@@ -120,7 +176,7 @@ StepResult DrivingEnv::step(const ConstVecRef& action, VecRef obs) {
     r.terminated = collision;
     const Road::Edge& now = road_.edge(ego_.edge);
     const bool road_end = now.exit && ego_.pos > now.length - kRoadEndMargin;
-    r.truncated = !r.terminated && (t_ >= config_.horizon || road_end);
+    r.truncated = !r.terminated && (t_ >= config_.settings.horizon || road_end);
   } catch (...) {
     rethrow_with_context("scenario '" + config_.scenario + "': step " + std::to_string(t_));
   }
@@ -201,10 +257,10 @@ bool DrivingEnv::ego_at_dead_end() const {
 }
 
 float DrivingEnv::reward(bool collision, bool changed_lane, bool failed_change) const {
-  const auto& w = config_.weights;
+  const auto& w = weights_;
   if (collision) return static_cast<float>(-w.collision);
   const double v = ego_.speed;
-  double r = driving::velocity_term(v, config_.desired_speed);
+  double r = driving::velocity_term(v, config_.settings.desired_speed) - w.offset;
   const Neighbor& lead = ego_.leader[kCurrent];
   if (lead.present) r -= w.gap * idm_.shortfall(lead.gap, v, v - lead.speed);
   const Neighbor& follow = ego_.follower[kCurrent];
@@ -218,7 +274,7 @@ void DrivingEnv::observe(VecRef obs) const {
   const double v = ego_.speed;
   const Road::Edge& edge = road_.edge(ego_.edge);
   obs[0] = clip1(2.0 * v / config_.speed_norm - 1.0);
-  obs[1] = since_lane_change_ >= config_.lane_change_interval ? 1.0f : -1.0f;
+  obs[1] = since_lane_change_ >= config_.settings.lane_change_interval ? 1.0f : -1.0f;
   for (int side = kLeft; side <= kRight; ++side) {
     float* o = obs.data() + 2 + 5 * side;
     const Neighbor& lead = ego_.leader[side];

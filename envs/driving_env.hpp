@@ -25,29 +25,26 @@
 #include "envs/driving_reward.hpp"
 #include "envs/env.hpp"
 #include "envs/road.hpp"
+#include "envs/scenario_settings.hpp"
 #include "envs/sumo_session.hpp"
 
 namespace rapid {
 
+// The scenario's design (geometry, sensing, control limits) plus the settings a config may change.
 struct DrivingConfig {
   std::string scenario;            // name; also the folder and file stem under network_dir()
   std::vector<std::string> edges;  // the road's edges (first one anchors the progress coordinate)
   std::string ego_route;           // route id (in the scenario's .rou.xml) the ego drives
-  double desired_speed = 25.0;     // v_des of the reward (m/s); the ego vType's speedFactor matches it
-  int horizon = 150;               // decisions per episode
-  int action_repeat = 5;           // SUMO steps per decision
   double step_length = 0.1;        // s
-  int warmup_steps = 250;          // SUMO steps of traffic before the ego enters (+ up to warmup_jitter)
-  int warmup_jitter = 50;
+  int warmup_jitter = 50;          // up to this many extra SUMO steps of traffic warm-up
   double sensing_range = 100.0;    // R (m): vehicles farther away read as missing
   double lane_end_range = 200.0;   // R_end (m) of the "lane continues ahead" entries
   double speed_norm = 35.0;        // v_norm (m/s): also the ego's top speed under agent control
   double rel_speed_norm = 15.0;    // m/s
   double max_accel = 4.0;          // m/s² at |a0| = 1
-  int lane_change_interval = 4;    // decisions between two lane changes
   float epsilon = 0.0f;            // the documented default ε
   int extra_features = 0;          // scenario features appended to the observation
-  driving::RewardWeights weights;
+  ScenarioSettings settings;       // horizon, control rate, traffic, reward variant, …
 };
 
 class DrivingEnv : public Env {
@@ -56,11 +53,12 @@ class DrivingEnv : public Env {
   static constexpr const char* kEgo = "ego";
 
   explicit DrivingEnv(DrivingConfig config);
+  ~DrivingEnv() override;
 
   std::string name() const override { return config_.scenario; }
   int obs_dim() const override { return kCommonObs + config_.extra_features; }
   int act_dim() const override { return 2; }
-  int horizon() const override { return config_.horizon; }
+  int horizon() const override { return config_.settings.horizon; }
   float default_epsilon() const override { return config_.epsilon; }
   void reset(std::uint64_t seed, VecRef obs) override;
   StepResult step(const ConstVecRef& action, VecRef obs) override;
@@ -95,6 +93,7 @@ class DrivingEnv : public Env {
     return ego_.edge < 0 ? none : road_.edge(ego_.edge).id;
   }
   const DrivingConfig& config() const { return config_; }
+  const driving::RewardWeights& reward_weights() const { return weights_; }
 
  protected:
   // Puts scenario vehicles on the road before the warm-up (simulation time 0).
@@ -130,6 +129,8 @@ class DrivingEnv : public Env {
   int since_lane_change_ = 0;
   bool episode_over_ = true;
   driving::IdmGap idm_;
+  driving::RewardWeights weights_;
+  std::string route_file_;  // this env's routes with the configured inflows (a temporary file)
 };
 
 }  // namespace rapid

@@ -1,26 +1,41 @@
 // The per-decision reward of the driving scenarios (SPEC §4), SUMO-free so it can be tested and
 // documented on its own (docs/scenarios.md).
 //
-//   r = r_v − w_gap·h(leader) − [ego changed lane] w_gap·h(new follower) − w_fail·[failed LC]
+//   r = r_v − offset − w_gap·h(leader) − [ego changed lane] w_gap·h(new follower) − w_fail·[failed LC]
 //   r = −collision_penalty on a collision (the episode then terminates)
 //
 // r_v = max(0, 1 − |v − v_des| / v_des) ∈ [0, 1] (FLOW's desired-velocity term) and
 // h = clamp(1 − gap / s*, 0, 1), with the IDM desired gap s* = s0 + max(0, v·T + v·Δv / (2√(a·b)))
-// of the vehicle behind (Δv its closing speed). A good step earns up to 1; a step spent at
-// standstill earns 0; tailgating, cutting somebody off or commanding impossible lane changes push
+// of the vehicle behind (Δv its closing speed). In the `short` variant (offset 0) a good step earns up to 1; a step spent at
+// standstill earns −offset; tailgating, cutting somebody off or commanding impossible lane changes push
 // it below 0; a collision costs as much as ten perfect steps and forfeits the rest of the episode.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace rapid::driving {
 
 struct RewardWeights {
+  double offset = 0.0;              // subtracted from r_v: where a slow step turns negative
   double gap = 1.0;                 // w_gap: unsafe headway, per unit of (1 − gap/s*)
   double failed_lane_change = 0.3;  // w_fail
   double collision = 10.0;          // collision_penalty
 };
+
+// The reward variants a scenario's `reward` setting names.
+//   short: r_v − penalties, as above: a step is negative only when penalised.
+//   flow:  AD4RL/FLOW-style at 0.1 s decisions: r = r_v − 0.3 − 2·h(leader) − [changed lane]·2·h(new
+//          follower) − 1·[failed LC], −10 on a collision. A free step at v_des earns 0.7; a step
+//          below 0.3·v_des, or with a gap under ~65% of s*, or a failed lane change is negative, so
+//          the paper's ε = −0.15 separates good steps (above) from unsafe, penalised or crawling
+//          ones (below), and a queue at 40% of v_des still pays (+0.1), so crashing out of a jam
+//          never beats waiting in it.
+inline RewardWeights reward_weights(const std::string& variant) {
+  if (variant == "flow") return {.offset = 0.3, .gap = 2.0, .failed_lane_change = 1.0, .collision = 10.0};
+  return {};
+}
 
 // IDM constants of the humans' vType (envs/networks/vtypes.add.xml), except s0 = 2 m < minGap so
 // that humans in their own steady state are never penalised.

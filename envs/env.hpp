@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/tensor.hpp"
+#include "envs/scenario_settings.hpp"
 
 namespace rapid {
 
@@ -51,6 +52,12 @@ class Env {
 // Names accepted by make_env, in a stable order.
 const std::vector<std::string>& env_names();
 // Throws std::invalid_argument("unknown scenario '…'; expected one of …") for an unknown name.
+// Driving scenarios get their `short` profile settings.
 std::unique_ptr<Env> make_env(const std::string& name);
+// A driving scenario with the given settings (throws std::invalid_argument naming a bad setting,
+// or for the pendulum, which has none).
+std::unique_ptr<Env> make_env(const std::string& name, const ScenarioSettings& settings);
+// lane-drop, cut-in and merge: the scenarios that take ScenarioSettings.
+bool is_driving_scenario(const std::string& name);
 
 }  // namespace rapid

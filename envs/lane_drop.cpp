@@ -5,8 +5,9 @@
 namespace rapid {
 
 namespace {
-DrivingConfig lane_drop_config() {
+DrivingConfig lane_drop_config(const ScenarioSettings& settings) {
   DrivingConfig c;
+  c.settings = settings;
   c.scenario = "lane-drop";
   c.edges = {"in", "out"};
   c.ego_route = "main";
@@ -19,7 +20,7 @@ DrivingConfig lane_drop_config() {
 constexpr double kFeatureRange = 600.0;
 }  // namespace
 
-LaneDropEnv::LaneDropEnv() : DrivingEnv(lane_drop_config()) {}
+LaneDropEnv::LaneDropEnv(const ScenarioSettings& settings) : DrivingEnv(lane_drop_config(settings)) {}
 
 int LaneDropEnv::ego_depart_lane(Rng& rng) {
   drop_progress_ = road().edge("out").offset;

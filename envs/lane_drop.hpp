@@ -9,7 +9,7 @@ namespace rapid {
 
 class LaneDropEnv final : public DrivingEnv {
  public:
-  LaneDropEnv();
+  explicit LaneDropEnv(const ScenarioSettings& settings);
 
  protected:
   int ego_depart_lane(Rng& rng) override;

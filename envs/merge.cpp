@@ -5,8 +5,9 @@
 namespace rapid {
 
 namespace {
-DrivingConfig merge_config() {
+DrivingConfig merge_config(const ScenarioSettings& settings) {
   DrivingConfig c;
+  c.settings = settings;
   c.scenario = "merge";
   c.edges = {"acc", "up", "ramp", "down"};
   c.ego_route = "onramp";
@@ -18,7 +19,7 @@ DrivingConfig merge_config() {
 }
 }  // namespace
 
-MergeEnv::MergeEnv() : DrivingEnv(merge_config()) {}
+MergeEnv::MergeEnv(const ScenarioSettings& settings) : DrivingEnv(merge_config(settings)) {}
 
 int MergeEnv::ego_depart_lane(Rng&) {
   const Road::Edge& acc = road().edge("acc");

@@ -9,7 +9,7 @@ namespace rapid {
 
 class MergeEnv final : public DrivingEnv {
  public:
-  MergeEnv();
+  explicit MergeEnv(const ScenarioSettings& settings);
 
  protected:
   int ego_depart_lane(Rng& rng) override;

@@ -18,11 +18,21 @@ const std::vector<std::string>& env_names() {
   return names;
 }
 
+bool is_driving_scenario(const std::string& name) {
+  return name == "lane-drop" || name == "cut-in" || name == "merge";
+}
+
 std::unique_ptr<Env> make_env(const std::string& name) {
-  if (name == "lane-drop") return std::make_unique<LaneDropEnv>();
-  if (name == "cut-in") return std::make_unique<CutInEnv>();
-  if (name == "merge") return std::make_unique<MergeEnv>();
   if (name == "pendulum") return std::make_unique<PendulumEnv>();
+  if (is_driving_scenario(name)) return make_env(name, default_scenario_settings(name));
+  return make_env(name, ScenarioSettings{});  // throws: unknown
+}
+
+std::unique_ptr<Env> make_env(const std::string& name, const ScenarioSettings& settings) {
+  if (name == "lane-drop") return std::make_unique<LaneDropEnv>(settings);
+  if (name == "cut-in") return std::make_unique<CutInEnv>(settings);
+  if (name == "merge") return std::make_unique<MergeEnv>(settings);
+  if (name == "pendulum") throw std::invalid_argument("scenario 'pendulum' takes no driving settings");
   std::string known;
   for (const auto& n : env_names()) known += (known.empty() ? "" : ", ") + n;
   throw std::invalid_argument("unknown scenario '" + name + "'; expected one of " + known);

@@ -61,6 +61,7 @@ std::vector<std::string> SumoSession::command_line(const SessionConfig& c) {
       "--eager-insert", "true",
       // Speeds come from the vTypes' speedFactor distributions, not from a hidden default.
       "--default.speeddev", "0"};
+  if (c.max_depart_delay >= 0.0) cmd.insert(cmd.end(), {"--max-depart-delay", std::to_string(c.max_depart_delay)});
   if (!c.route_files.empty()) cmd.insert(cmd.end(), {"--route-files", join(c.route_files)});
   if (!c.additional_files.empty()) cmd.insert(cmd.end(), {"--additional-files", join(c.additional_files)});
   return cmd;

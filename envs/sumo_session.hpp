@@ -25,6 +25,10 @@ struct SessionConfig {
   std::vector<std::string> additional_files;  // vehicle types
   std::uint64_t seed = 0;
   double step_length = 0.1;
+  // Vehicles that could not enter the road within this many seconds are dropped (< 0: never).
+  // Without a bound, an inflow above what the entry passes builds an ever longer queue of waiting
+  // vehicles that SUMO retries every step.
+  double max_depart_delay = -1.0;
 };
 
 class SumoSession {

@@ -125,7 +125,7 @@ int build_datasets(const DatasetBuildSpec& spec) {
   for (const auto& name : dataset_names()) have_files = have_files && fs::exists(out + "/" + name + ".h5");
   if (!spec.force && have_files && record_is_done(out + "/build.json", build_hash)) return 0;
 
-  std::unique_ptr<Env> env = make_env(spec.scenario);
+  std::unique_ptr<Env> env = make_run_env(spec.scenario, run_config_from_json(spec.config));
   std::map<std::string, Dataset> made;
   int index = 0;
   // Progress over all sources' transitions, so `rapid status` and the sweep see the build alive.

@@ -72,7 +72,7 @@ nlohmann::json log_to_json(const TrainLog& log, nlohmann::json& record) {
 
 int run_job(const JobSpec& spec) {
   const RunConfig config = run_config_from_json(spec.config);
-  std::unique_ptr<Env> env = make_env(spec.scenario);
+  std::unique_ptr<Env> env = make_run_env(spec.scenario, config);
   const bool needs_prior = algo_uses_prior(spec.algo);
   if (needs_prior && spec.dataset_path.empty())
     throw std::invalid_argument("algorithm '" + spec.algo + "' needs --dataset");

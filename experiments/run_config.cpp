@@ -88,9 +88,13 @@ RunConfig run_config_from_json(const nlohmann::json& j) {
                                       "eval_every", "eval_episodes", "last_k", "bc_log_every", "buffer_capacity"};
   for (const char* k : kKeys)
     if (!j.contains(k)) throw std::invalid_argument(std::string("config is missing key '") + k + "'");
+  static const char* const kScenarioKeys[] = {"network", "action_repeat", "horizon", "lane_change_interval",
+                                              "traffic_warmup", "max_depart_delay", "desired_speed", "reward", "inflow", "ramp_inflow",
+                                              "obstacles", "obstacle_speed_min", "obstacle_speed_max"};
   for (const auto& [key, v] : j.items()) {
     bool known = false;
     for (const char* k : kKeys) known = known || key == k;
+    for (const char* k : kScenarioKeys) known = known || key == k;
     if (!known) throw std::invalid_argument("unknown config key '" + key + "'");
   }
   try {
@@ -115,10 +119,33 @@ RunConfig run_config_from_json(const nlohmann::json& j) {
     c.last_k = positive<int>(j, "last_k");
     c.bc_log_every = positive<long>(j, "bc_log_every");
     c.buffer_capacity = positive<long>(j, "buffer_capacity");
+    if (j.contains("horizon")) {
+      ScenarioSettings s;
+      s.network = j.at("network").get<std::string>();
+      s.action_repeat = j.at("action_repeat").get<int>();
+      s.horizon = j.at("horizon").get<int>();
+      s.lane_change_interval = j.at("lane_change_interval").get<int>();
+      s.traffic_warmup = j.at("traffic_warmup").get<int>();
+      s.desired_speed = j.at("desired_speed").get<double>();
+      s.max_depart_delay = j.at("max_depart_delay").get<double>();
+      s.reward = j.at("reward").get<std::string>();
+      s.inflow = j.at("inflow").get<double>();
+      s.ramp_inflow = j.value("ramp_inflow", 0.0);
+      s.obstacles = j.value("obstacles", 0);
+      s.obstacle_speed_min = j.value("obstacle_speed_min", 0.0);
+      s.obstacle_speed_max = j.value("obstacle_speed_max", 0.0);
+      c.scenario = s;
+    }
     return c;
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(std::string("config has a value of the wrong type: ") + e.what());
   }
 }
 
+}  // namespace rapid
+
+namespace rapid {
+std::unique_ptr<Env> make_run_env(const std::string& scenario, const RunConfig& config) {
+  return config.scenario ? make_env(scenario, *config.scenario) : make_env(scenario);
+}
 }  // namespace rapid

@@ -9,6 +9,9 @@
 #include <vector>
 
 #include "algos/agent_config.hpp"
+#include "envs/env.hpp"
+#include <memory>
+#include <optional>
 
 namespace rapid {
 
@@ -21,6 +24,7 @@ struct RunConfig {
   int last_k = 3;              // final performance = mean of the last K evaluations
   long bc_log_every = 500;     // BC-loss curve resolution (mean over the window's updates)
   long buffer_capacity = 1000000;
+  std::optional<ScenarioSettings> scenario;  // driving scenarios whose config sets scenario keys
 };
 
 // The folder with the per-scenario default files; RAPID_CONFIG_DIR overrides the built-in path.
@@ -38,5 +42,8 @@ void parse_set_option(const std::string& assignment, nlohmann::json& overrides);
 
 // Converts a validated config object; throws std::invalid_argument naming a bad value.
 RunConfig run_config_from_json(const nlohmann::json& j);
+
+// The environment a run of `scenario` trains in, with the config's scenario settings.
+std::unique_ptr<Env> make_run_env(const std::string& scenario, const RunConfig& config);
 
 }  // namespace rapid

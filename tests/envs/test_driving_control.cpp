@@ -19,7 +19,7 @@ TEST(DrivingControl, FullThrottleIntoASlowerLeaderIsACollision) {
   // An entry lane that continues (lane 0 ends at the drop: that crash would not need a leader).
   std::uint64_t seed = 1;
   for (env->reset(seed, obs); env->ego().lane == 0;) env->reset(++seed, obs);
-  const double penalty = env->config().weights.collision;
+  const double penalty = env->reward_weights().collision;
   for (int t = 0; t < env->horizon(); ++t) {
     const DrivingEnv::EgoState before = env->ego();
     const StepResult r = env->step(act(1.0f, 0.0f), obs);
@@ -39,7 +39,7 @@ TEST(DrivingControl, FullThrottleIntoASlowerLeaderIsACollision) {
 TEST(DrivingControl, LeftAndRightCommandsMoveTheEgoOneLane) {
   auto env = test::make_driving("cut-in");
   Vec obs(env->obs_dim());
-  const int interval = env->config().lane_change_interval;
+  const int interval = env->config().settings.lane_change_interval;
   int tested = 0;
   for (std::uint64_t seed = 1; seed <= 30 && tested < 3; ++seed) {
     env->reset(seed, obs);
@@ -84,7 +84,7 @@ TEST(DrivingControl, ChangingIntoAMissingLaneIsPenalisedAndDoesNothing) {
     EXPECT_TRUE(r.info.lane_change_failed);
     EXPECT_EQ(r.info.lane_changes, 0);
     EXPECT_EQ(env->ego_edge(), "ramp");
-    EXPECT_NEAR(keep.reward - r.reward, env->config().weights.failed_lane_change, 1e-6);
+    EXPECT_NEAR(keep.reward - r.reward, env->reward_weights().failed_lane_change, 1e-6);
     EXPECT_TRUE(kept.isApprox(failed, 0.0f)) << "a refused command changed the traffic";
   }
 }
@@ -111,7 +111,7 @@ TEST(DrivingControl, AccelerationCommandIsApplied) {
   Vec obs(env->obs_dim());
   env->reset(2, obs);
   const double v0 = env->ego().speed;
-  const double dt = env->config().action_repeat * env->config().step_length;
+  const double dt = env->config().settings.action_repeat * env->config().step_length;
   env->step(act(-0.5f, 0.0f), obs);
   EXPECT_NEAR(env->ego().speed, std::max(0.0, v0 - 0.5 * env->config().max_accel * dt), 1e-6);
 }

@@ -59,21 +59,21 @@ TEST(LaneDrop, TrafficIsCongested) {
   int n = 0;
   for (const auto& id : libsumo::Edge::getLastStepVehicleIDs("in")) sum += libsumo::Vehicle::getSpeed(id), ++n;
   ASSERT_GT(n, 30);
-  EXPECT_LT(sum / n, 0.8 * env->config().desired_speed);
+  EXPECT_LT(sum / n, 0.8 * env->config().settings.desired_speed);
 }
 
 TEST(CutIn, ObstaclesAreSlowerThanTheDesiredSpeedAndCutIn) {
-  auto env = std::make_unique<CutInEnv>();
+  auto env = std::make_unique<CutInEnv>(default_scenario_settings("cut-in"));
   env->set_builtin_driver(true);
   Vec obs(env->obs_dim()), action = Vec::Zero(2);
   int cut_ins = 0;
   for (std::uint64_t seed = 1; seed <= 4 && cut_ins == 0; ++seed) {
     env->reset(seed, obs);
-    for (double v : env->obstacle_speeds()) EXPECT_LT(v, env->config().desired_speed - 5.0);
+    for (double v : env->obstacle_speeds()) EXPECT_LT(v, env->config().settings.desired_speed - 5.0);
     for (bool done = false; !done;) {
       const StepResult r = env->step(action, obs);
       done = r.terminated || r.truncated;
-      for (int k = 0; k < CutInEnv::kObstacles; ++k) {
+      for (std::size_t k = 0; k < env->obstacle_speeds().size(); ++k) {
         const std::string id = "obs" + std::to_string(k);
         EXPECT_LE(libsumo::Vehicle::getSpeed(id), env->obstacle_speeds()[k] + 1e-6);
       }

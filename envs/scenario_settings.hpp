@@ -1,0 +1,44 @@
+// The knobs of a driving scenario that a run's config may set: control rate, horizon, traffic,
+// obstacles, the desired speed and the reward variant. The defaults are the `short` profile (the
+// scenarios as first built: 0.5 s decisions, 150 per episode); the `flow` profile sets them to the
+// paper's scale (docs/scenarios.md). A test holds experiments/configs/short/ to these defaults.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace rapid {
+
+struct ScenarioSettings {
+  // Geometry: "short" builds envs/networks/<scenario>/, "long" envs/networks/<scenario>/long/.
+  std::string network = "short";
+  int action_repeat = 5;           // SUMO steps of 0.1 s per decision
+  int horizon = 150;               // decisions per episode
+  int lane_change_interval = 4;    // decisions between two lane changes of the ego
+  int traffic_warmup = 250;        // SUMO steps of traffic before the ego enters (+ up to 50)
+  // Seconds a vehicle may wait to enter the road before SUMO drops it (< 0: no limit). An inflow
+  // above what the entry passes otherwise builds an ever longer queue of waiting vehicles that
+  // SUMO retries every step, which costs time and changes nothing on the road.
+  double max_depart_delay = -1.0;
+  double desired_speed = 25.0;     // v_des of the reward, m/s (SUMO's driver aims at it too)
+  std::string reward = "short";    // reward variant: "short" or "flow" (envs/driving_reward.hpp)
+  // Offered inflow per main-road lane, veh/h (each lane a Bernoulli flow, one draw per second).
+  double inflow = 0.0;
+  double ramp_inflow = 0.0;        // merge only: veh/h on the on-ramp
+  int obstacles = 0;               // cut-in only: slow obstacle vehicles
+  double obstacle_speed_min = 0.0, obstacle_speed_max = 0.0;  // cut-in only, m/s
+};
+
+// The `short` profile's settings of a driving scenario (throws std::invalid_argument for a name
+// that is not a driving scenario).
+ScenarioSettings default_scenario_settings(const std::string& scenario);
+
+// Throws std::invalid_argument("<key> …") naming the first setting that is out of range for
+// `scenario` (e.g. obstacles on a road without them, a minimum above a maximum).
+void validate_scenario_settings(const std::string& scenario, const ScenarioSettings& s);
+
+// The networks and reward variants a setting may name.
+const std::vector<std::string>& network_variants();
+const std::vector<std::string>& reward_variants();
+
+}  // namespace rapid
