@@ -10,13 +10,13 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${RAPID_BUILD_DIR:-$here/build}
 
 packages=(
-  build-essential cmake git pkg-config
+  build-essential cmake git  # g++ brings OpenMP (libgomp, omp.h); no pkg-config lookup is made
   sumo                     # sumo, netconvert, libsumocpp and its headers
   sumo-tools               # SUMOConfig.cmake and SUMO_HOME (/usr/share/sumo: xsd schemas);
                            # only *recommended* by sumo, so --no-install-recommends skips it
   libeigen3-dev nlohmann-json3-dev libcli11-dev
   libhdf5-dev hdf5-tools   # HDF5 C++ API; h5dump for inspecting datasets
-  libomp-dev libgtest-dev libgmock-dev libbenchmark-dev  # GTestConfig.cmake needs gmock
+  libgtest-dev libgmock-dev libbenchmark-dev  # GTestConfig.cmake needs gmock
   python3 python3-matplotlib  # figures: scripts/plot runs Debian's /usr/bin/python3 (numpy
                               # comes with matplotlib)
   python3-pil              # Pillow, for matplotlib's GIF writer (animated figures)
