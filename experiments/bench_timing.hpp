@@ -4,18 +4,11 @@
 #pragma once
 
 #include <algorithm>
-#include <chrono>
 #include <vector>
 
+#include "core/clock.hpp"
+
 namespace rapid::bench {
-
-using Clock = std::chrono::steady_clock;
-
-inline double seconds_between(Clock::time_point a, Clock::time_point b) {
-  return std::chrono::duration<double>(b - a).count();
-}
-
-inline double seconds_since(Clock::time_point t0) { return seconds_between(t0, Clock::now()); }
 
 // Median of `v` (0 for an empty vector); takes a copy because it reorders.
 inline double median(std::vector<double> v) {

@@ -63,7 +63,7 @@ int run_bench(const BenchOptions& o) {
     throw UsageError(std::string("--train-algo: ") + e.what());
   }
   const BenchPlan plan = make_plan(o.quick);
-  const auto t_start = bench::Clock::now();
+  const auto t_start = Clock::now();
   bench::BenchReport report;
   report.quick = o.quick;
   report.machine = bench::machine_json();
@@ -101,7 +101,7 @@ int run_bench(const BenchOptions& o) {
     report.sweep = bench::bench_sweep(plan.sweep);
   }
 
-  report.wall_s = bench::seconds_since(t_start);
+  report.wall_s = seconds_since(t_start);
   bench::print_report(std::cout, report);
   if (!o.json_file.empty()) write_file_atomic(o.json_file, bench::to_json(report).dump(1) + "\n");
   return kExitOk;

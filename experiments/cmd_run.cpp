@@ -6,6 +6,7 @@
 #include "experiments/cli_checks.hpp"
 #include "experiments/cli_errors.hpp"
 #include "experiments/commands.hpp"
+#include "experiments/dataset_build.hpp"
 #include "experiments/grid.hpp"
 #include "experiments/job.hpp"
 #include "experiments/run_config.hpp"
@@ -24,7 +25,7 @@ struct RunOptions {
 // A named dataset lives at DIR/<scenario>/<name>.h5; anything else is taken as a path.
 std::string resolve_dataset_path(const RunOptions& o) {
   for (const auto& name : dataset_names())
-    if (o.dataset == name) return o.dataset_dir + "/" + o.scenario + "/" + name + ".h5";
+    if (o.dataset == name) return DatasetFolder(o.dataset_dir, o.scenario).dataset(name);
   return o.dataset;
 }
 

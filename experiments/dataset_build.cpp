@@ -1,11 +1,12 @@
 #include "experiments/dataset_build.hpp"
 
-#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <iostream>
 
 #include "core/atomic_file.hpp"
+#include "core/clock.hpp"
+#include "core/hash.hpp"
 #include "core/dataset.hpp"
 #include "core/dataset_io.hpp"
 #include "core/dataset_mix.hpp"
@@ -34,7 +35,7 @@ std::vector<Source> sources(long steps) {
 }
 
 std::string checkpoint_path(const std::string& ref_dir, long step, long steps) {
-  return step == steps ? ref_dir + "/actor.ckpt" : checkpoint_file(ref_dir, step);
+  return step == steps ? ref_dir + "/" + job_files::kActor : checkpoint_file(ref_dir, step);
 }
 
 bool record_is_done(const std::string& path, const std::string& hash) {
@@ -52,7 +53,7 @@ bool record_is_done(const std::string& path, const std::string& hash) {
 // A final episode cut at n is marked as a timeout. `progress(t)` is called about once a second.
 Dataset collect(Env& env, Mlp& actor, long n, float noise_std, std::uint64_t seed, int source_index,
                 const std::function<void(long)>& progress) {
-  auto last_progress = std::chrono::steady_clock::now();
+  auto last_progress = Clock::now();
   DatasetBuilder builder(env.obs_dim(), env.act_dim());
   builder.reserve(static_cast<std::size_t>(n));
   Rng noise(stream_seed(seed, Stream::kExploration, 1000 + source_index));
@@ -74,9 +75,9 @@ Dataset collect(Env& env, Mlp& actor, long n, float noise_std, std::uint64_t see
     builder.add(obs, action, r.reward, next_obs, r.terminated, (r.truncated && !r.terminated) || cut);
     obs = next_obs;
     need_reset = r.terminated || r.truncated;
-    if (std::chrono::steady_clock::now() - last_progress >= std::chrono::seconds(1)) {
+    if (seconds_since(last_progress) >= 1.0) {
       progress(t + 1);
-      last_progress = std::chrono::steady_clock::now();
+      last_progress = Clock::now();
     }
   }
   return builder.finish();
@@ -85,14 +86,14 @@ Dataset collect(Env& env, Mlp& actor, long n, float noise_std, std::uint64_t see
 }  // namespace
 
 int build_datasets(const DatasetBuildSpec& spec) {
-  const std::string out = spec.dir + "/" + spec.scenario;
-  const std::string ref_dir = out + "/reference";
-  fs::create_directories(out);
+  const DatasetFolder folder(spec.dir, spec.scenario);
+  const std::string ref_dir = folder.reference();
+  fs::create_directories(folder.dir);
   // A killed earlier build may have left temporaries of its files here.
-  std::vector<std::string> outputs = {out + "/build.json", out + "/progress.json"};
-  for (const auto& name : dataset_names()) outputs.push_back(out + "/" + name + ".h5");
+  std::vector<std::string> outputs = {folder.done_marker(), folder.progress()};
+  for (const auto& name : dataset_names()) outputs.push_back(folder.dataset(name));
   if (const int n = remove_leftover_temporaries(outputs); n > 0)
-    std::cerr << "dataset build: removed " << n << " temporary file(s) an interrupted build left in " << out << "\n";
+    std::cerr << "dataset build: removed " << n << " temporary file(s) an interrupted build left in " << folder.dir << "\n";
 
   JobSpec ref;
   ref.scenario = spec.scenario;
@@ -107,10 +108,11 @@ int build_datasets(const DatasetBuildSpec& spec) {
 
   bool have_checkpoints = true;
   for (const Source& s : sources(steps)) have_checkpoints = have_checkpoints && fs::exists(checkpoint_path(ref_dir, s.step, steps));
-  if (spec.force || !record_is_done(ref_dir + "/record.json", ref_hash) || !have_checkpoints) {
+  const std::string ref_record = ref_dir + "/" + job_files::kRecord;
+  if (spec.force || !record_is_done(ref_record, ref_hash) || !have_checkpoints) {
     std::cerr << "dataset build: training the reference agent for " << spec.scenario << " (" << steps << " steps)\n";
     if (run_job(ref) != 0) {
-      std::cerr << "dataset build: the reference agent failed; see " << ref_dir << "/record.json\n";
+      std::cerr << "dataset build: the reference agent failed; see " << ref_record << "\n";
       return 1;
     }
   }
@@ -122,18 +124,18 @@ int build_datasets(const DatasetBuildSpec& spec) {
                                     {"noise_std", spec.reference.noise_std}};
   const std::string build_hash = fnv1a_hex(build_key.dump());
   bool have_files = true;
-  for (const auto& name : dataset_names()) have_files = have_files && fs::exists(out + "/" + name + ".h5");
-  if (!spec.force && have_files && record_is_done(out + "/build.json", build_hash)) return 0;
+  for (const auto& name : dataset_names()) have_files = have_files && fs::exists(folder.dataset(name));
+  if (!spec.force && have_files && record_is_done(folder.done_marker(), build_hash)) return 0;
 
   std::unique_ptr<Env> env = make_env(spec.scenario);
   std::map<std::string, Dataset> made;
   int index = 0;
   // Progress over all sources' transitions, so `rapid status` and the sweep see the build alive.
   const long total = static_cast<long>(sources(steps).size()) * spec.reference.transitions;
-  const auto t_collect = std::chrono::steady_clock::now();
+  const auto t_collect = Clock::now();
   auto report = [&](long done) {
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_collect).count();
-    write_progress(out, done, total, s > 0 ? done / s : 0.0);
+    const double s = seconds_since(t_collect);
+    write_progress(folder.dir, done, total, s > 0 ? done / s : 0.0);
   };
   for (const Source& s : sources(steps)) {
     const std::string ckpt = checkpoint_path(ref_dir, s.step, steps);
@@ -153,7 +155,7 @@ int build_datasets(const DatasetBuildSpec& spec) {
   Metadata mixed_meta = made.at("final").metadata;
   mixed_meta[meta::kSourceCheckpoint] = "half final, half medium (whole episodes)";
   made.emplace("final+medium", mix_final_medium(made.at("final"), made.at("medium"), mixed_meta));
-  for (const auto& name : dataset_names()) write_dataset(out + "/" + name + ".h5", made.at(name));
+  for (const auto& name : dataset_names()) write_dataset(folder.dataset(name), made.at(name));
 
   // The table is only meaningful when data quality is ordered; say so when it is not.
   nlohmann::json quality = nlohmann::json::object();
@@ -173,7 +175,7 @@ int build_datasets(const DatasetBuildSpec& spec) {
                              {"scenario", spec.scenario}, {"transitions", spec.reference.transitions},
                              {"noise_std", spec.reference.noise_std}, {"reference_seed", spec.reference.seed},
                              {"end_time", utc_now_iso8601()}};
-  write_file_atomic(out + "/build.json", manifest.dump(1));
+  write_file_atomic(folder.done_marker(), manifest.dump(1));
   return 0;
 }
 

@@ -3,8 +3,6 @@
 // checkpoint out with exploration noise into `initial`, `medium` and `final`; `final+medium` is
 // half of each.
 //
-// Folder DIR/<scenario>/: reference/ (a run folder: record.json, actor_<step>.ckpt, actor.ckpt),
-// initial.h5, medium.h5, final.h5, final+medium.h5, and build.json written last.
 // Both stages are skipped when their outputs exist with a matching hash, so rerunning is cheap.
 #pragma once
 
@@ -12,8 +10,22 @@
 #include <string>
 
 #include "experiments/grid.hpp"  // ReferenceSettings: a grid's "reference" object
+#include "experiments/job.hpp"
 
 namespace rapid {
+
+// Where `rapid dataset build --dir ROOT` keeps one scenario's files: ROOT/<scenario>/ holds
+// reference/ (the reference agent's job folder: record.json, actor_<step>.ckpt, actor.ckpt),
+// initial.h5, medium.h5, final.h5, final+medium.h5, progress.json while collecting, and
+// build.json, written last, saying the datasets are complete.
+struct DatasetFolder {
+  DatasetFolder(const std::string& root, const std::string& scenario) : dir(root + "/" + scenario) {}
+  std::string dir;
+  std::string reference() const { return dir + "/reference"; }
+  std::string dataset(const std::string& name) const { return dir + "/" + name + ".h5"; }
+  std::string done_marker() const { return dir + "/build.json"; }
+  std::string progress() const { return dir + "/" + job_files::kProgress; }
+};
 
 struct DatasetBuildSpec {
   std::string scenario;

@@ -5,6 +5,8 @@
 
 #include "algos/registry.hpp"
 #include "core/atomic_file.hpp"
+#include "core/clock.hpp"
+#include "core/hash.hpp"
 #include "core/dataset.hpp"
 #include "core/dataset_io.hpp"
 #include "envs/env.hpp"
@@ -44,7 +46,7 @@ std::string checkpoint_file(const std::string& dir, long step) {
 
 void write_progress(const std::string& dir, long step, long steps, double steps_per_s) {
   const nlohmann::json p = {{"step", step}, {"steps", steps}, {"steps_per_s", steps_per_s}};
-  write_file_atomic(dir + "/progress.json", p.dump());
+  write_file_atomic(dir + "/" + job_files::kProgress, p.dump());
 }
 
 namespace {
@@ -80,8 +82,9 @@ int run_job(const JobSpec& spec) {
     throw std::invalid_argument("algorithm '" + spec.algo + "' takes no dataset");
   fs::create_directories(spec.out_dir);
   // A killed earlier attempt of this job may have left temporaries of its files here.
-  std::vector<std::string> outputs = {spec.out_dir + "/record.json", spec.out_dir + "/progress.json",
-                                      spec.out_dir + "/actor.ckpt"};
+  std::vector<std::string> outputs;
+  for (const char* file : {job_files::kRecord, job_files::kProgress, job_files::kActor})
+    outputs.push_back(spec.out_dir + "/" + file);
   for (long step : spec.checkpoint_steps) outputs.push_back(checkpoint_file(spec.out_dir, step));
   if (const int n = remove_leftover_temporaries(outputs); n > 0)
     std::cerr << "rapid run: removed " << n << " temporary file(s) an interrupted attempt left in " << spec.out_dir << "\n";
@@ -98,7 +101,7 @@ int run_job(const JobSpec& spec) {
       {"provenance", provenance_json()},
   };
   record["provenance"]["start_time"] = utc_now_iso8601();
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = Clock::now();
   TrainLog log;
   try {
     record["config_hash"] = job_config_hash(spec);
@@ -121,11 +124,11 @@ int run_job(const JobSpec& spec) {
     hooks.checkpoint_steps = spec.checkpoint_steps;
     hooks.checkpoint = [&](long step) { agent->actor().save(checkpoint_file(spec.out_dir, step)); };
     hooks.progress = [&](long step, const TrainLog& l) {
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const double s = seconds_since(t0);
       write_progress(spec.out_dir, step, config.steps, s > 0 ? l.env_steps / s : 0.0);
     };
     train(*env, *agent, needs_prior ? &prior : nullptr, config, spec.seed, log, hooks);
-    agent->actor().save(spec.out_dir + "/actor.ckpt");
+    agent->actor().save(spec.out_dir + "/" + job_files::kActor);
     record["status"] = "ok";
   } catch (const DivergedError& e) {
     record["status"] = "diverged";
@@ -137,14 +140,14 @@ int run_job(const JobSpec& spec) {
   log_to_json(log, record);
   const auto [final_mean, final_std] = final_performance(log, config.last_k);
   record["final"] = {{"return_mean", final_mean}, {"return_std", final_std}, {"last_k", config.last_k}};
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double wall = seconds_since(t0);
   record["timing"] = {{"wall_s", wall},
                       {"env_steps_per_s", log.env_seconds > 0 ? log.env_steps / log.env_seconds : 0.0},
                       {"updates_per_s", log.update_seconds > 0 ? log.updates / log.update_seconds : 0.0},
                       {"eval_s", log.eval_seconds},
                       {"train_steps_per_s", wall > 0 ? log.env_steps / wall : 0.0}};
   record["provenance"]["end_time"] = utc_now_iso8601();
-  write_file_atomic(spec.out_dir + "/record.json", record.dump(1));
+  write_file_atomic(spec.out_dir + "/" + job_files::kRecord, record.dump(1));
   if (record["status"] != "ok") std::cerr << "rapid run: " << record["status"].get<std::string>() << ": "
                                           << record["error"].get<std::string>() << "\n";
   return record["status"] == "ok" ? 0 : 1;

@@ -10,6 +10,13 @@ namespace rapid {
 
 inline constexpr const char* kRunRecordSchema = "rapid.run/1";
 
+// What a job leaves in its folder.
+namespace job_files {
+inline constexpr const char* kRecord = "record.json";      // the run record, written last
+inline constexpr const char* kProgress = "progress.json";  // how far it is, while it runs
+inline constexpr const char* kActor = "actor.ckpt";        // the trained actor
+}  // namespace job_files
+
 // The dataset names a cell may use besides a path (SPEC §3), in the table's order.
 const std::vector<std::string>& dataset_names();
 

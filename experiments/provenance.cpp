@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <cstdio>
 #include <ctime>
 #include <libsumo/libsumo.h>
 
@@ -40,17 +39,6 @@ nlohmann::json provenance_json() {
           {"compiler", std::string("g++ ") + __VERSION__},
           {"arch_flags", RAPID_ARCH_FLAGS_STRING},
           {"host", host}};
-}
-
-std::string fnv1a_hex(std::string_view bytes) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (unsigned char c : bytes) {
-    h ^= c;
-    h *= 0x100000001b3ULL;
-  }
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
 }
 
 }  // namespace rapid

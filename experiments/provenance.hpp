@@ -14,7 +14,4 @@ std::string utc_now_iso8601();
 // adds start and end times.
 nlohmann::json provenance_json();
 
-// FNV-1a 64-bit hash as 16 hex digits (config hashes, dataset fingerprints).
-std::string fnv1a_hex(std::string_view bytes);
-
 }  // namespace rapid

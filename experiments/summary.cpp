@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/hash.hpp"
 #include "experiments/job.hpp"
 #include "experiments/summary_claims.hpp"
 #include "experiments/summary_curves.hpp"
@@ -35,18 +36,12 @@ const CellSummary* Summary::column_cell(const TableRow& row, const std::string& 
 
 namespace {
 
-// FNV-1a of the cell key: each cell's bootstrap seed depends on the cell alone, so adding a
-// scenario to a grid does not move the other cells' intervals.
-std::uint64_t key_hash(const std::string& key) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (unsigned char c : key) h = (h ^ c) * 0x100000001b3ULL;
-  return h;
-}
-
 BootstrapOptions bootstrap_options(const BootstrapSettings& s, int replicates, const std::string& key) {
   BootstrapOptions options;
   options.replicates = replicates;
-  options.seed = s.seed ^ key_hash(key);
+  // Each cell's bootstrap seed depends on the cell alone, so adding a scenario to a grid does not
+  // move the other cells' intervals.
+  options.seed = s.seed ^ fnv1a(key);
   options.confidence = s.confidence;
   return options;
 }

@@ -8,20 +8,9 @@
 #include "algos/registry.hpp"
 #include "core/dataset_io.hpp"
 #include "core/dataset_stats.hpp"
+#include "experiments/dataset_build.hpp"
 
 namespace rapid {
-
-namespace {
-
-std::string dataset_file(const std::string& scenario, const std::string& dataset) {
-  SweepJob job;
-  job.kind = JobKind::kCell;
-  job.scenario = scenario;
-  job.dataset = dataset;
-  return cell_dataset_path(job);
-}
-
-}  // namespace
 
 nlohmann::json dataset_stats_json(const DatasetStats& s) {
   return {{"transitions", s.transitions},
@@ -57,7 +46,7 @@ std::vector<DatasetSummary> summarize_datasets(const SweepFolder& folder) {
       DatasetSummary entry;
       entry.scenario = scenario;
       entry.dataset = name;
-      const std::string relative = dataset_file(scenario, name);
+      const std::string relative = DatasetFolder(sweep_files::kDatasets, scenario).dataset(name);
       std::optional<Dataset> d;
       if (!std::filesystem::is_regular_file(folder.path(relative))) {
         entry.error = relative + " is missing";
@@ -83,8 +72,8 @@ std::vector<DatasetSummary> summarize_datasets(const SweepFolder& folder) {
 }
 
 nlohmann::json reference_summary(const SweepFolder& folder, const std::string& scenario) {
-  const auto record = read_json_file(folder.path(std::string(sweep_files::kDatasets) + "/" + scenario + "/reference/" +
-                                                 sweep_files::kRecord));
+  const std::string reference = DatasetFolder(sweep_files::kDatasets, scenario).reference();
+  const auto record = read_json_file(folder.path(reference + "/" + job_files::kRecord));
   if (!record || !record->is_object()) return nullptr;
   nlohmann::json out = {{"status", record->value("status", "")}};
   if (record->contains("final")) out["final"] = (*record)["final"];

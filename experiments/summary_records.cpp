@@ -25,7 +25,7 @@ bool names_cell(const nlohmann::json& record, const SweepJob& cell) {
 }  // namespace
 
 LoadedRecord load_cell_record(const SweepFolder& folder, const SweepJob& cell) {
-  const auto path = folder.path(cell.dir + "/" + sweep_files::kRecord);
+  const auto path = folder.path(job_marker_path(cell));
   if (!std::filesystem::exists(path)) return not_usable(cell.seed, "missing", "no record yet");
   const auto parsed = read_json_file(path);
   if (!parsed || !parsed->is_object()) return not_usable(cell.seed, "corrupt", "record.json is not a JSON object");

@@ -64,6 +64,12 @@ AttemptVerdict judge_attempt(const SweepFolder& folder, const SweepJob& job, con
   return {"failed", true, "exit code " + std::to_string(exit_code) + ": " + last_log_line(folder, job)};
 }
 
+int max_attempts(const SweepFolder& folder) { return 1 + folder.grid.max_retries; }
+
+bool worth_retrying(const SweepFolder& folder, const AttemptVerdict& verdict, int attempt) {
+  return verdict.retryable && attempt < max_attempts(folder);
+}
+
 void record_outcome(const SweepFolder& folder, const SweepJob& job, const AttemptVerdict& verdict, int attempts,
                     int exit_code, int signal) {
   if (verdict.state == "ok" && job.kind != JobKind::kCell) return mark_dataset_stage_done(folder, job, attempts);

@@ -29,6 +29,13 @@ struct AttemptVerdict {
 AttemptVerdict judge_attempt(const SweepFolder& folder, const SweepJob& job, const std::string& expected_hash,
                              int exit_code, int signal);
 
+// The attempts a job gets within one sweep: the first one and the grid's max_retries.
+int max_attempts(const SweepFolder& folder);
+
+// Whether the failed attempt number `attempt` is worth another one: it failed in a way that
+// may not repeat (a crash or a kill, not bad usage or divergence) and attempts are left.
+bool worth_retrying(const SweepFolder& folder, const AttemptVerdict& verdict, int attempt);
+
 // Writes the job's outcome.json once it is settled: ok (for the dataset stage, noting the grid
 // inputs it ran for), or failed/diverged with its last exit status and error.
 void record_outcome(const SweepFolder& folder, const SweepJob& job, const AttemptVerdict& verdict, int attempts,

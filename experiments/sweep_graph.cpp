@@ -3,12 +3,13 @@
 #include <map>
 
 #include "algos/registry.hpp"
+#include "experiments/dataset_build.hpp"
 
 namespace rapid {
 
 namespace {
 std::string scenario_dir(const std::string& scenario) { return std::string(sweep_files::kJobs) + "/" + scenario; }
-std::string datasets_dir(const std::string& scenario) { return std::string(sweep_files::kDatasets) + "/" + scenario; }
+DatasetFolder datasets_of(const std::string& scenario) { return DatasetFolder(sweep_files::kDatasets, scenario); }
 }  // namespace
 
 std::string SweepJob::id() const {
@@ -88,25 +89,25 @@ std::vector<std::string> job_arguments(const SweepJob& job) {
 
 std::string job_marker_path(const SweepJob& job) {
   switch (job.kind) {
-    case JobKind::kReference: return datasets_dir(job.scenario) + "/reference/" + sweep_files::kRecord;
-    case JobKind::kDatasets: return datasets_dir(job.scenario) + "/build.json";
+    case JobKind::kReference: return datasets_of(job.scenario).reference() + "/" + job_files::kRecord;
+    case JobKind::kDatasets: return datasets_of(job.scenario).done_marker();
     case JobKind::kCell: break;
   }
-  return job.dir + "/" + sweep_files::kRecord;
+  return job.dir + "/" + job_files::kRecord;
 }
 
 std::string job_progress_path(const SweepJob& job) {
   switch (job.kind) {
-    case JobKind::kReference: return datasets_dir(job.scenario) + "/reference/" + sweep_files::kProgress;
-    case JobKind::kDatasets: return datasets_dir(job.scenario) + "/" + sweep_files::kProgress;
+    case JobKind::kReference: return datasets_of(job.scenario).reference() + "/" + job_files::kProgress;
+    case JobKind::kDatasets: return datasets_of(job.scenario).progress();
     case JobKind::kCell: break;
   }
-  return job.dir + "/" + sweep_files::kProgress;
+  return job.dir + "/" + job_files::kProgress;
 }
 
 std::string cell_dataset_path(const SweepJob& job) {
   if (job.kind != JobKind::kCell || job.dataset.empty()) return "";
-  return datasets_dir(job.scenario) + "/" + job.dataset + ".h5";
+  return datasets_of(job.scenario).dataset(job.dataset);
 }
 
 }  // namespace rapid

@@ -30,12 +30,10 @@ namespace sweep_files {
 inline constexpr const char* kGrid = "grid.json";
 inline constexpr const char* kManifest = "sweep.json";
 inline constexpr const char* kLock = ".lock";
-inline constexpr const char* kDatasets = "datasets";
+inline constexpr const char* kDatasets = "datasets";  // `rapid dataset build --dir` (DatasetFolder)
 inline constexpr const char* kJobs = "jobs";
 inline constexpr const char* kLog = "log.txt";
 inline constexpr const char* kOutcome = "outcome.json";  // written by the runner after each attempt
-inline constexpr const char* kRecord = "record.json";
-inline constexpr const char* kProgress = "progress.json";
 inline constexpr const char* kNoDataset = "none";  // the dataset folder of ddpg cells
 }  // namespace sweep_files
 

@@ -5,6 +5,7 @@
 #include <csignal>
 #include <ctime>
 
+#include "core/clock.hpp"
 #include "experiments/job.hpp"
 #include "experiments/provenance.hpp"
 #include "experiments/sweep_attempt.hpp"
@@ -12,8 +13,6 @@
 #include "experiments/sweep_progress.hpp"
 
 namespace rapid {
-
-using Clock = std::chrono::steady_clock;
 
 namespace {
 
@@ -90,8 +89,6 @@ class LocalRunner {
   }
 
  private:
-  static double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
   static std::string phase_name(Phase p) {
     switch (p) {
       case Phase::kOk: return "ok";
@@ -221,11 +218,10 @@ class LocalRunner {
     const SweepJob& job = folder_.graph.jobs[i];
     JobRun& r = runs_[i];
     r.error = verdict.error;
-    const int max_attempts = 1 + folder_.grid.max_retries;
-    if (verdict.retryable && r.attempts < max_attempts) {
+    if (worth_retrying(folder_, verdict, r.attempts)) {
       r.phase = Phase::kReady;
       display_->event("retry    " + job.id() + " after attempt " + std::to_string(r.attempts) + "/" +
-                          std::to_string(max_attempts) + ": " + verdict.error,
+                          std::to_string(max_attempts(folder_)) + ": " + verdict.error,
                       snapshot());
       return;
     }

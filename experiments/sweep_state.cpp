@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/atomic_file.hpp"
+#include "core/hash.hpp"
 #include "experiments/job.hpp"
 #include "experiments/provenance.hpp"
 

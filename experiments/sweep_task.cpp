@@ -9,13 +9,13 @@
 #include <cstring>
 
 #include "core/atomic_file.hpp"
+#include "core/clock.hpp"
 #include "experiments/sweep_attempt.hpp"
 #include "experiments/sweep_pool.hpp"
 
 namespace rapid {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 inline constexpr const char* kTaskListSchema = "rapid.tasks/1";
 
@@ -150,9 +150,9 @@ int run_sweep_task(const SweepFolder& folder, const std::string& list, std::size
   }
 
   ProcessPool pool;
-  const int max_attempts = 1 + folder.grid.max_retries;
+  const int attempts = max_attempts(folder);
   for (int attempt = 1;; ++attempt) {
-    out << "rapid sweep task: " << job.id() << ", attempt " << attempt << "/" << max_attempts << std::endl;
+    out << "rapid sweep task: " << job.id() << ", attempt " << attempt << "/" << attempts << std::endl;
     begin_attempt(folder, job, attempt);
     const AttemptEnd end = run_attempt(pool, folder, job, binary);
     const ChildExit& e = end.exit;
@@ -173,8 +173,8 @@ int run_sweep_task(const SweepFolder& folder, const std::string& list, std::size
       out << "rapid sweep task: ok " << job.id() << "\n";
       return 0;
     }
-    if (verdict.retryable && attempt < max_attempts) {
-      out << "rapid sweep task: retry " << job.id() << " after attempt " << attempt << "/" << max_attempts << ": "
+    if (worth_retrying(folder, verdict, attempt)) {
+      out << "rapid sweep task: retry " << job.id() << " after attempt " << attempt << "/" << attempts << ": "
           << verdict.error << "\n";
       continue;
     }

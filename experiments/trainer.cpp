@@ -1,31 +1,14 @@
 #include "experiments/trainer.hpp"
 
 #include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <limits>
 #include <string>
+
+#include "core/clock.hpp"
+#include "core/statistics.hpp"
 
 namespace rapid {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-double mean_of(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x;
-  return v.empty() ? 0.0 : s / static_cast<double>(v.size());
-}
-
-double std_of(const std::vector<double>& v) {
-  if (v.size() < 2) return 0.0;
-  const double m = mean_of(v);
-  double s = 0;
-  for (double x : v) s += (x - m) * (x - m);
-  return std::sqrt(s / static_cast<double>(v.size()));  // population std over the episodes
-}
 
 // Running means of UpdateStats over one logging window.
 struct LossWindow {
@@ -66,14 +49,15 @@ EvalResult evaluate(Env& env, ActorCritic& agent, int episodes) {
     returns.push_back(ret);
     collisions += collided ? 1 : 0;
   }
-  return {mean_of(returns), std_of(returns), static_cast<double>(collisions) / episodes};
+  return {mean(returns), population_std(returns), static_cast<double>(collisions) / episodes};
 }
 
 std::pair<double, double> final_performance(const TrainLog& log, int last_k) {
   std::vector<double> last;
   const int n = static_cast<int>(log.eval.size());
   for (int i = std::max(0, n - last_k); i < n; ++i) last.push_back(log.eval[i].return_mean);
-  return {mean_of(last), std_of(last)};
+  if (last.empty()) return {0.0, 0.0};  // a run that failed before its first evaluation
+  return {mean(last), population_std(last)};
 }
 
 void train(Env& env, ActorCritic& agent, const ReplayBuffer* prior, const RunConfig& config,
