@@ -70,18 +70,20 @@ float ActorCritic::actor_objective(const Batch& batch, UpdateStats& stats) {
   return stats.actor_loss;
 }
 
-float ActorCritic::actor_loss(const Batch& batch) {
-  UpdateStats stats;
+float ActorCritic::actor_gradient(const Batch& batch, UpdateStats& stats) {
   const float loss = actor_objective(batch, stats);
   actor_.zero_grad();
   actor_.backward(dpi_, Grads::kParamsOnly);
   return loss;
 }
 
+float ActorCritic::compute_actor_gradient(const Batch& batch) {
+  UpdateStats stats;
+  return actor_gradient(batch, stats);
+}
+
 void ActorCritic::actor_step(const Batch& batch, UpdateStats& stats) {
-  actor_objective(batch, stats);
-  actor_.zero_grad();
-  actor_.backward(dpi_, Grads::kParamsOnly);
+  actor_gradient(batch, stats);
   actor_opt_.step(actor_.params(), actor_.grads());
   acting_actor_stale_ = true;
 }

@@ -48,9 +48,9 @@ class ActorCritic {
   // The critic's target y = r + γ·(1 − terminal)·Q'(s', π'(s')); timeouts bootstrap.
   const RowVec& critic_targets(const Batch& batch);
 
-  // The actor loss (2) on `batch`, leaving dL/dφ in actor().grads(); changes no parameter.
-  // Exposed so tests can check the gradient against finite differences.
-  float actor_loss(const Batch& batch);
+  // Writes dL/dφ of the actor loss (2) on `batch` into actor().grads() and returns L(φ); changes
+  // no parameter. Exposed so tests can check the gradient against finite differences.
+  float compute_actor_gradient(const Batch& batch);
 
   bool parameters_finite() const;
   const AgentConfig& config() const { return config_; }
@@ -64,6 +64,8 @@ class ActorCritic {
  private:
   // Fills pi_ = π(s), dpi_ = dL/dπ(s) and the actor-side fields of `stats`; returns L(φ).
   float actor_objective(const Batch& batch, UpdateStats& stats);
+  // actor_objective, then back-propagates dpi_ into the actor's parameter gradients.
+  float actor_gradient(const Batch& batch, UpdateStats& stats);
   void actor_step(const Batch& batch, UpdateStats& stats);
   void critic_step(const Batch& batch, UpdateStats& stats);
   // Writes [s; a] into the critic's input buffer.

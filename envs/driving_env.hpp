@@ -37,8 +37,10 @@ struct DrivingConfig {
   int horizon = 150;               // decisions per episode
   int action_repeat = 5;           // SUMO steps per decision
   double step_length = 0.1;        // s
-  int warmup_steps = 250;          // SUMO steps of traffic before the ego enters (+ up to warmup_jitter)
-  int warmup_jitter = 50;
+  // SUMO steps of traffic before the ego enters, plus a random 0..traffic_warmup_jitter more.
+  // (Not the run config's warmup_steps, which are random-action decisions before learning.)
+  int traffic_warmup_steps = 250;
+  int traffic_warmup_jitter = 50;
   double sensing_range = 100.0;    // R (m): vehicles farther away read as missing
   double lane_end_range = 200.0;   // R_end (m) of the "lane continues ahead" entries
   double speed_norm = 35.0;        // v_norm (m/s): also the ego's top speed under agent control

@@ -51,7 +51,8 @@ void write_progress(const std::string& dir, long step, long steps, double steps_
 
 namespace {
 
-nlohmann::json log_to_json(const TrainLog& log, nlohmann::json& record) {
+// The record's curves: evaluations, training episodes, BC losses and the other losses.
+void add_curves(const TrainLog& log, nlohmann::json& record) {
   record["eval"] = nlohmann::json::array();
   for (const EvalPoint& e : log.eval)
     record["eval"].push_back({{"step", e.step}, {"target_step", e.target_step}, {"return_mean", e.return_mean},
@@ -67,7 +68,6 @@ nlohmann::json log_to_json(const TrainLog& log, nlohmann::json& record) {
     record["losses"].push_back({{"step", p.step}, {"critic", json_number(p.critic_loss)},
                                 {"actor", json_number(p.actor_loss)}, {"q_mean", json_number(p.q_mean)}});
   }
-  return record;
 }
 
 }  // namespace
@@ -137,7 +137,7 @@ int run_job(const JobSpec& spec) {
     record["status"] = "failed";
     record["error"] = e.what();
   }
-  log_to_json(log, record);
+  add_curves(log, record);
   const auto [final_mean, final_std] = final_performance(log, config.last_k);
   record["final"] = {{"return_mean", final_mean}, {"return_std", final_std}, {"last_k", config.last_k}};
   const double wall = seconds_since(t0);

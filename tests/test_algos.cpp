@@ -30,7 +30,6 @@ Batch hand_made_batch() {
   for (int i = 0; i < b.act.size(); ++i) b.act.data()[i] = static_cast<float>(rng.uniform(-1, 1));
   b.rew << -1.0f, -0.15f, 0.2f, 0.9f, -0.5f, 0.05f, -0.16f, 0.6f;
   b.not_terminal.setOnes();
-  b.timeout.setZero();
   b.prior_count = kBatch / 2;
   return b;
 }
@@ -52,12 +51,12 @@ TEST_P(ActorLossGradient, AgreesWithFiniteDifferences) {
   for (Eigen::Index i = 0; i < a->actor().params().size(); ++i)
     a->actor().params()[i] += static_cast<float>(rng.uniform(-0.3, 0.3));
   const Batch batch = hand_made_batch();
-  a->actor_loss(batch);
+  a->compute_actor_gradient(batch);
   const Vec grads = a->actor().grads();
   ASSERT_GT(grads.norm(), 0.0f);
   double numeric = 0;
   for (Eigen::Index i = 0; i < grads.size(); ++i) {
-    ASSERT_TRUE(test::central_difference_agrees([&] { return static_cast<double>(a->actor_loss(batch)); },
+    ASSERT_TRUE(test::central_difference_agrees([&] { return static_cast<double>(a->compute_actor_gradient(batch)); },
                                                 &a->actor().params()[i], grads[i], &numeric))
         << GetParam() << " actor parameter " << i << ": analytic " << grads[i] << " numeric " << numeric;
   }
@@ -74,7 +73,7 @@ INSTANTIATE_TEST_SUITE_P(AllAlgorithms, ActorLossGradient,
 namespace {
 // The imitation part of a variant's loss: its actor loss minus DDPG's on identical networks.
 double bc_part(const std::string& name, const Batch& batch) {
-  return static_cast<double>(agent(name)->actor_loss(batch)) - agent("ddpg")->actor_loss(batch);
+  return static_cast<double>(agent(name)->compute_actor_gradient(batch)) - agent("ddpg")->compute_actor_gradient(batch);
 }
 }  // namespace
 
@@ -134,12 +133,13 @@ TEST(Registry, PriorUseAndUnknownNames) {
   }
 }
 
-TEST(CriticTarget, MasksTerminalsButBootstrapsThroughTimeouts) {
+// A time-limit truncation is stored as not terminal (ReplayBuffer.SamplesOnlyStoredTransitionsUniformly
+// checks that), so the target bootstraps through it like through any other step.
+TEST(CriticTarget, MasksTerminalsOnly) {
   auto a = agent("ddpg");
   Batch batch = hand_made_batch();
   batch.not_terminal.setOnes();
   batch.not_terminal[2] = 0.0f;  // a collision
-  batch.timeout[5] = 1.0f;       // a time-limit truncation: still bootstrapped
   // At initialisation the target networks equal the online ones.
   const Mat next_pi = a->actor().forward(batch.next_obs);
   Mat sa(kObs + kAct, kBatch);
