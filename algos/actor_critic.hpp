@@ -2,15 +2,15 @@
 // deterministic tanh actor, critic Q(s, a) with LayerNorm after each hidden layer, target
 // networks with Polyak averaging, Adam.
 //
-// An algorithm is this class plus two answers (see the files beside this one):
-//   uses_prior()   whether half of every batch comes from the prior dataset,
+// An algorithm is this class plus two answers:
 //   bc_weights()   the per-sample weight w_i of the imitation term in the actor loss
-//                  L(φ) = −(1/B) Σ Q(s_i, π(s_i)) + (1/B) Σ w_i ‖π(s_i) − a_i‖².
-// The backbone (DDPG) answers "no" and "all zero".
+//                  L(φ) = −(1/B) Σ Q(s_i, π(s_i)) + (1/B) Σ w_i ‖π(s_i) − a_i‖²
+//                  (overridden in the files beside this one; the backbone's is all zero), and
+//   uses_prior     whether half of every batch comes from the prior dataset: its row in
+//                  algos/registry.cpp, since the trainer, not the agent, draws the batches.
 #pragma once
 
 #include <memory>
-#include <string>
 
 #include "algos/agent_config.hpp"
 #include "core/adam.hpp"
@@ -34,9 +34,6 @@ class ActorCritic {
  public:
   ActorCritic(int obs_dim, int act_dim, const AgentConfig& config, std::uint64_t init_seed);
   virtual ~ActorCritic() = default;
-
-  virtual std::string name() const { return "ddpg"; }
-  virtual bool uses_prior() const { return false; }
 
   // Deterministic action π(s) for one observation (no allocation after the first call).
   const Mat& act(const ConstVecRef& obs);

@@ -114,13 +114,14 @@ TrainBenchResult bench_train(const std::string& scenario, const RunConfig& defau
   std::vector<double> alone_decision, alone_reset, alone_update, in_run_decision, in_run_update;
   for (int round = 0; round < o.rounds; ++round) {
     // The same seeds every round: the same run, so the rounds differ only by machine noise.
-    auto agent = make_agent(o.algo, obs_dim, act_dim, config.agent, stream_seed(7, Stream::kNetworkInit));
+    const Algorithm& algo = find_algorithm(o.algo);
+    auto agent = algo.make(obs_dim, act_dim, config.agent, stream_seed(7, Stream::kNetworkInit));
     ReplayBuffer prior;
-    if (agent->uses_prior()) prior = synthetic_replay(obs_dim, act_dim, 4096, config.agent.epsilon, 21);
+    if (algo.uses_prior) prior = synthetic_replay(obs_dim, act_dim, 4096, config.agent.epsilon, 21);
     RecordingEnv recorder(*env, o.steps + 4L * env->horizon());
     TrainLog log;
     const auto t0 = Clock::now();
-    train(recorder, *agent, agent->uses_prior() ? &prior : nullptr, config, /*run_seed=*/7, log);
+    train(recorder, *agent, algo.uses_prior ? &prior : nullptr, config, /*run_seed=*/7, log);
     const double wall = seconds_since(t0);
 
     const TrajectoryCost alone = recorder.replay(*env);

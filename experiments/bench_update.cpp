@@ -109,10 +109,11 @@ UpdateBenchResult bench_update(const std::string& algo, int obs_dim, int act_dim
   const std::vector<GemmShape> gemms = update_gemms(obs_dim, act_dim, config);
   res.flops_per_update = total_flops(gemms);
 
-  auto agent = make_agent(algo, obs_dim, act_dim, config, stream_seed(1, Stream::kNetworkInit));
+  const Algorithm& algorithm = find_algorithm(algo);
+  auto agent = algorithm.make(obs_dim, act_dim, config, stream_seed(1, Stream::kNetworkInit));
   const ReplayBuffer prior = synthetic_replay(obs_dim, act_dim, 4096, config.epsilon, 11);
   const ReplayBuffer online = synthetic_replay(obs_dim, act_dim, 4096, config.epsilon, 12);
-  SymmetricSampler sampler(agent->uses_prior() ? &prior : nullptr, &online);
+  SymmetricSampler sampler(algorithm.uses_prior ? &prior : nullptr, &online);
   // A few batches drawn up front and cycled: sampling is not part of the update.
   std::vector<Batch> batches(8);
   Rng rng(13);

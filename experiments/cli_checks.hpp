@@ -1,10 +1,11 @@
-// Option validators shared by several subcommands, with messages a user can act on.
+// Option validators and help-text pieces shared by several subcommands.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cctype>
 #include <string>
+#include <vector>
 
 namespace rapid {
 
@@ -17,6 +18,15 @@ inline CLI::Validator seed_validator() {
         return digits ? "" : "must be a non-negative integer, got '" + s + "'";
       },
       "SEED");
+}
+
+// "a, b, c or d": the names a help text offers, read from the registry that defines them
+// (env_names(), algo_names(), dataset_names()) so that help cannot fall behind it.
+inline std::string names_or(const std::vector<std::string>& names) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  return out;
 }
 
 }  // namespace rapid

@@ -9,6 +9,7 @@
 #include "envs/env.hpp"
 #include "experiments/bench_report.hpp"
 #include "experiments/bench_timing.hpp"
+#include "experiments/cli_checks.hpp"
 #include "experiments/cli_errors.hpp"
 #include "experiments/commands.hpp"
 #include "experiments/run_config.hpp"
@@ -58,7 +59,7 @@ int run_bench(const BenchOptions& o) {
     scenarios = {o.scenario};
   }
   try {
-    make_agent(o.train_algo, 1, 1, AgentConfig{.actor_hidden = {1}, .critic_hidden = {1}}, 0);
+    find_algorithm(o.train_algo);
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--train-algo: ") + e.what());
   }
@@ -115,7 +116,7 @@ Command add_bench_command(CLI::App& parent) {
       "bench", "Measure env, update, end-to-end and sweep speed against their limits (SPEC §10)");
   sub->add_option("--scenario", opts->scenario, "one scenario (default: lane-drop, cut-in and merge)");
   sub->add_option("--json", opts->json_file, "also write the results as one JSON object to FILE");
-  sub->add_option("--train-algo", opts->train_algo, "algorithm of the end-to-end training run")
+  sub->add_option("--train-algo", opts->train_algo, "algorithm of the end-to-end training run: " + names_or(algo_names()))
       ->capture_default_str();
   sub->add_flag("--quick", opts->quick, "a few seconds: rough numbers (smoke test)");
   sub->add_flag("--no-sweep", opts->no_sweep, "skip the sweep throughput measurement");

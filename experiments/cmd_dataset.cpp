@@ -13,6 +13,7 @@
 #include "core/dataset.hpp"
 #include "core/dataset_io.hpp"
 #include "core/dataset_stats.hpp"
+#include "experiments/cli_checks.hpp"
 #include "experiments/cli_errors.hpp"
 #include "experiments/commands.hpp"
 #include "experiments/dataset_build.hpp"
@@ -142,7 +143,7 @@ Command add_build(CLI::App& dataset) {
   auto o = std::make_shared<BuildOptions>();
   CLI::App* sub = dataset.add_subcommand(
       "build", "Train (or reuse) the reference DDPG agent and write initial, medium, final and final+medium");
-  sub->add_option("--scenario", o->scenario, "lane-drop, cut-in, merge or pendulum")->required();
+  sub->add_option("--scenario", o->scenario, names_or(env_names()))->required();
   sub->add_option("--grid", o->grid, "grid whose config overrides and \"reference\" settings apply");
   sub->add_option("--dir", o->dir, "output folder; datasets go to DIR/<scenario>/<name>.h5");
   sub->add_option("--set", o->sets, "override a config key of the reference agent: --set key=value");

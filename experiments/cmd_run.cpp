@@ -45,20 +45,22 @@ int run_command(const RunOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--scenario: ") + e.what());
   }
-  bool needs_prior = false;
   try {
-    needs_prior = algo_uses_prior(o.algo);  // throws, naming the known ones, for an unknown algorithm
+    find_algorithm(o.algo);  // throws, naming the known ones, for an unknown algorithm
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--algo: ") + e.what());
   }
-  if (needs_prior && o.dataset.empty()) throw UsageError("--dataset: algorithm '" + o.algo + "' needs a prior dataset");
-  if (!needs_prior && !o.dataset.empty()) throw UsageError("--dataset: algorithm '" + o.algo + "' takes no dataset");
+  try {
+    check_dataset_fits(o.algo, !o.dataset.empty());
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--dataset: ") + e.what());
+  }
   spec.scenario = o.scenario;
   spec.algo = o.algo;
   spec.seed = o.seed;
   spec.out_dir = o.out;
   spec.checkpoint_steps = o.checkpoint_at;
-  if (needs_prior) {
+  if (!o.dataset.empty()) {
     spec.dataset = o.dataset;
     spec.dataset_path = resolve_dataset_path(o);
     if (!std::filesystem::is_regular_file(spec.dataset_path))
@@ -79,9 +81,11 @@ int run_command(const RunOptions& o) {
 Command add_run_command(CLI::App& parent) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* sub = parent.add_subcommand("run", "Train one job and write its run record");
-  sub->add_option("--scenario", o->scenario, "lane-drop, cut-in, merge or pendulum")->required();
-  sub->add_option("--algo", o->algo, "rapid-rl, rlpd, col-prior, col-all or ddpg")->required();
-  sub->add_option("--dataset", o->dataset, "initial, medium, final, final+medium or a D4RL-layout HDF5 path");
+  sub->add_option("--scenario", o->scenario, names_or(env_names()))->required();
+  sub->add_option("--algo", o->algo, names_or(algo_names()))->required();
+  std::vector<std::string> datasets = dataset_names();
+  datasets.push_back("a D4RL-layout HDF5 path");
+  sub->add_option("--dataset", o->dataset, names_or(datasets));
   sub->add_option("--dataset-dir", o->dataset_dir, "where named datasets live (DIR/<scenario>/<name>.h5)");
   sub->add_option("--seed", o->seed, "run seed (network init, exploration, sampling, traffic)")
       ->required()

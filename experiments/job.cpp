@@ -23,6 +23,12 @@ const std::vector<std::string>& dataset_names() {
   return names;
 }
 
+void check_dataset_fits(const std::string& algo, bool has_dataset) {
+  const bool needs = find_algorithm(algo).uses_prior;
+  if (needs && !has_dataset) throw std::invalid_argument("algorithm '" + algo + "' needs a prior dataset");
+  if (!needs && has_dataset) throw std::invalid_argument("algorithm '" + algo + "' takes no dataset");
+}
+
 std::string job_config_hash(const JobSpec& spec) {
   nlohmann::json key = {{"scenario", spec.scenario}, {"algo", spec.algo}, {"seed", spec.seed},
                         {"config", spec.config}, {"dataset", nullptr}};
@@ -75,11 +81,8 @@ void add_curves(const TrainLog& log, nlohmann::json& record) {
 int run_job(const JobSpec& spec) {
   const RunConfig config = run_config_from_json(spec.config);
   std::unique_ptr<Env> env = make_env(spec.scenario);
-  const bool needs_prior = algo_uses_prior(spec.algo);
-  if (needs_prior && spec.dataset_path.empty())
-    throw std::invalid_argument("algorithm '" + spec.algo + "' needs --dataset");
-  if (!needs_prior && !spec.dataset_path.empty())
-    throw std::invalid_argument("algorithm '" + spec.algo + "' takes no dataset");
+  const Algorithm& algo = find_algorithm(spec.algo);
+  check_dataset_fits(spec.algo, !spec.dataset_path.empty());
   fs::create_directories(spec.out_dir);
   // A killed earlier attempt of this job may have left temporaries of its files here.
   std::vector<std::string> outputs;
@@ -106,7 +109,7 @@ int run_job(const JobSpec& spec) {
   try {
     record["config_hash"] = job_config_hash(spec);
     ReplayBuffer prior;
-    if (needs_prior) {
+    if (algo.uses_prior) {
       const Dataset data =
           read_dataset(spec.dataset_path, {env->obs_dim(), env->act_dim(), spec.scenario});
       // Every environment's action box is [-1, 1]; data outside it came from another task.
@@ -117,9 +120,7 @@ int run_job(const JobSpec& spec) {
       prior = make_prior_buffer(data);
       record["dataset_file"] = spec.dataset_path;
     }
-    AgentConfig agent_config = config.agent;
-    auto agent = make_agent(spec.algo, env->obs_dim(), env->act_dim(), agent_config,
-                            stream_seed(spec.seed, Stream::kNetworkInit));
+    auto agent = algo.make(env->obs_dim(), env->act_dim(), config.agent, stream_seed(spec.seed, Stream::kNetworkInit));
     TrainHooks hooks;
     hooks.checkpoint_steps = spec.checkpoint_steps;
     hooks.checkpoint = [&](long step) { agent->actor().save(checkpoint_file(spec.out_dir, step)); };
@@ -127,7 +128,7 @@ int run_job(const JobSpec& spec) {
       const double s = seconds_since(t0);
       write_progress(spec.out_dir, step, config.steps, s > 0 ? l.env_steps / s : 0.0);
     };
-    train(*env, *agent, needs_prior ? &prior : nullptr, config, spec.seed, log, hooks);
+    train(*env, *agent, algo.uses_prior ? &prior : nullptr, config, spec.seed, log, hooks);
     agent->actor().save(spec.out_dir + "/" + job_files::kActor);
     record["status"] = "ok";
   } catch (const DivergedError& e) {

@@ -31,6 +31,11 @@ struct JobSpec {
   std::vector<long> checkpoint_steps;  // extra actor checkpoints (reference agents)
 };
 
+// An algorithm that uses prior data needs a dataset, the others take none (their registry row
+// says which). Throws std::invalid_argument("algorithm 'X' needs a prior dataset" / "… takes no
+// dataset").
+void check_dataset_fits(const std::string& algo, bool has_dataset);
+
 // The hash that says whether a finished record still answers this job: the cell, the resolved
 // config and the dataset file's content. Code revision is deliberately not part of it.
 std::string job_config_hash(const JobSpec& spec);

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <map>
 
+#include "algos/registry.hpp"
+
 namespace rapid {
 
 std::string fixed(double x, int decimals) {
@@ -43,9 +45,9 @@ std::string lookup(const std::map<std::string, std::string>& names, const std::s
 }  // namespace
 
 std::string algo_display_name(const std::string& algo) {
-  static const std::map<std::string, std::string> names = {
-      {"rapid-rl", "RAPID-RL"}, {"rlpd", "RLPD"}, {"col-prior", "CoL-prior"}, {"col-all", "CoL-all"}, {"ddpg", "DDPG"}};
-  return lookup(names, algo);
+  for (const Algorithm& a : algorithms())
+    if (a.name == algo) return a.display_name;
+  return algo;
 }
 
 std::string dataset_display_name(const std::string& dataset) {

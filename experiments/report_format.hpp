@@ -18,7 +18,8 @@ std::string exact_number(std::optional<double> x);
 // 1, else 3, so small-scale returns (pendulum, smoke runs) still show their differences.
 int table_decimals(double magnitude);
 
-// Display names as the paper prints them: "RAPID-RL", "CoL-prior", "Final+Medium", "Lane-drop".
+// Display names as the paper prints them: "RAPID-RL", "CoL-prior", "Final+Medium", "Lane-drop";
+// an algorithm's comes from its registry row (algos/registry.cpp).
 std::string algo_display_name(const std::string& algo);
 std::string dataset_display_name(const std::string& dataset);
 std::string scenario_display_name(const std::string& scenario);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "algos/registry.hpp"
 #include "experiments/report_format.hpp"
 
 namespace rapid {
@@ -12,7 +13,7 @@ namespace {
 
 std::vector<std::string> columns(const Summary& s) {
   std::vector<std::string> out;
-  for (const std::string& a : table_algo_order())
+  for (const std::string& a : algo_names())
     if (std::find(s.grid.algos.begin(), s.grid.algos.end(), a) != s.grid.algos.end()) out.push_back(a);
   return out;
 }

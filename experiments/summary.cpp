@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "algos/registry.hpp"
 #include "core/hash.hpp"
 #include "experiments/job.hpp"
 #include "experiments/summary_claims.hpp"
@@ -12,11 +13,6 @@
 #include "experiments/sweep_state.hpp"
 
 namespace rapid {
-
-const std::vector<std::string>& table_algo_order() {
-  static const std::vector<std::string> order = {"rapid-rl", "rlpd", "col-prior", "col-all", "ddpg"};
-  return order;
-}
 
 std::string CellSummary::key() const {
   return scenario + "/" + (dataset.empty() ? "none" : dataset) + "/" + algo;
@@ -46,9 +42,10 @@ BootstrapOptions bootstrap_options(const BootstrapSettings& s, int replicates, c
   return options;
 }
 
+// The grid's algorithms in the registry's order, the paper's columns.
 std::vector<std::string> ordered_algos(const Grid& grid) {
   std::vector<std::string> out;
-  for (const std::string& a : table_algo_order())
+  for (const std::string& a : algo_names())
     if (std::find(grid.algos.begin(), grid.algos.end(), a) != grid.algos.end()) out.push_back(a);
   return out;
 }
@@ -112,7 +109,7 @@ void build_rows(Summary& s) {
       row.dataset = dataset;
       double best = -INFINITY;
       for (const std::string& algo : ordered_algos(s.grid)) {
-        const std::string cell_dataset = algo == "ddpg" ? "" : dataset;
+        const std::string cell_dataset = find_algorithm(algo).uses_prior ? dataset : "";
         for (std::size_t i = 0; i < s.cells.size(); ++i) {
           const CellSummary& c = s.cells[i];
           if (c.scenario != scenario || c.dataset != cell_dataset || c.algo != algo) continue;
@@ -198,11 +195,12 @@ Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptio
   const auto rank = [](const std::vector<std::string>& order, const std::string& x) {
     return std::find(order.begin(), order.end(), x) - order.begin();
   };
+  const std::vector<std::string> algo_order = algo_names();
   std::stable_sort(s.cells.begin(), s.cells.end(), [&](const CellSummary& a, const CellSummary& b) {
     const auto ka = std::tuple(rank(s.grid.scenarios, a.scenario), a.dataset.empty() ? 99 : rank(dataset_names(), a.dataset),
-                               rank(table_algo_order(), a.algo));
+                               rank(algo_order, a.algo));
     const auto kb = std::tuple(rank(s.grid.scenarios, b.scenario), b.dataset.empty() ? 99 : rank(dataset_names(), b.dataset),
-                               rank(table_algo_order(), b.algo));
+                               rank(algo_order, b.algo));
     return ka < kb;
   });
 

@@ -22,9 +22,6 @@ namespace rapid {
 
 inline constexpr const char* kSummarySchema = "rapid.summary/1";
 
-// Table columns in the paper's order; a grid's algorithms are shown in this order.
-const std::vector<std::string>& table_algo_order();
-
 // What became of one seed of a cell. status: ok | failed | diverged | missing (no record yet) |
 // stale (its config hash no longer matches the grid) | corrupt (unreadable record).
 struct SeedResult {

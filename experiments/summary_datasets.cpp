@@ -29,7 +29,7 @@ nlohmann::json dataset_stats_json(const DatasetStats& s) {
 namespace {
 
 bool scenario_has_prior_cells(const Grid& grid) {
-  return std::any_of(grid.algos.begin(), grid.algos.end(), [](const std::string& a) { return algo_uses_prior(a); });
+  return std::any_of(grid.algos.begin(), grid.algos.end(), [](const std::string& a) { return find_algorithm(a).uses_prior; });
 }
 
 }  // namespace

@@ -26,7 +26,7 @@ JobGraph build_job_graph(const Grid& grid) {
   JobGraph graph;
   std::map<std::string, std::size_t> dataset_job_of;  // scenario → its dataset job
   bool any_prior = false;
-  for (const auto& algo : grid.algos) any_prior = any_prior || algo_uses_prior(algo);
+  for (const auto& algo : grid.algos) any_prior = any_prior || find_algorithm(algo).uses_prior;
 
   if (any_prior) {
     for (const auto& scenario : grid.scenarios) {
@@ -61,10 +61,10 @@ JobGraph build_job_graph(const Grid& grid) {
     };
     for (const auto& dataset : grid.datasets)
       for (const auto& algo : grid.algos)
-        if (algo_uses_prior(algo))
+        if (find_algorithm(algo).uses_prior)
           for (std::uint64_t seed : grid.seeds) add_cell(dataset, algo, seed);
     for (const auto& algo : grid.algos)
-      if (!algo_uses_prior(algo))
+      if (!find_algorithm(algo).uses_prior)
         for (std::uint64_t seed : grid.seeds) add_cell("", algo, seed);
   }
   return graph;

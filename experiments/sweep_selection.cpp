@@ -40,7 +40,7 @@ Selection parse_selection(const std::string& text, const Grid& grid, const JobGr
   s.text = text;
   if (text.empty()) return s;
   std::vector<std::string> datasets = grid.datasets;
-  if (std::any_of(grid.algos.begin(), grid.algos.end(), [](const auto& a) { return !algo_uses_prior(a); }))
+  if (std::any_of(grid.algos.begin(), grid.algos.end(), [](const auto& a) { return !find_algorithm(a).uses_prior; }))
     datasets.push_back(sweep_files::kNoDataset);
   for (const std::string& filter : split(text, ',')) {
     const auto eq = filter.find('=');

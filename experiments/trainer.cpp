@@ -63,10 +63,9 @@ std::pair<double, double> final_performance(const TrainLog& log, int last_k) {
 void train(Env& env, ActorCritic& agent, const ReplayBuffer* prior, const RunConfig& config,
            std::uint64_t run_seed, TrainLog& log, const TrainHooks& hooks) {
   const int obs_dim = env.obs_dim(), act_dim = env.act_dim();
-  if (agent.uses_prior() && (prior == nullptr || prior->empty()))
-    throw std::invalid_argument("algorithm '" + agent.name() + "' needs a prior dataset");
+  if (prior != nullptr && prior->empty()) throw std::invalid_argument("the prior buffer is empty");
   ReplayBuffer online(obs_dim, act_dim, static_cast<std::size_t>(std::min(config.buffer_capacity, config.steps)));
-  SymmetricSampler sampler(agent.uses_prior() ? prior : nullptr, &online);
+  SymmetricSampler sampler(prior, &online);
   Batch batch;
   batch.resize(obs_dim, act_dim, config.agent.batch_size);
   Rng explore_rng(stream_seed(run_seed, Stream::kExploration));

@@ -58,7 +58,8 @@ struct EvalResult {
 // Runs `episodes` episodes of the deterministic policy on the fixed evaluation seeds.
 EvalResult evaluate(Env& env, ActorCritic& agent, int episodes);
 
-// Trains `agent` online for config.steps decisions; `prior` (may be null) is the prior buffer.
+// Trains `agent` online for config.steps decisions. With a `prior` buffer (for the algorithms
+// whose registry row says uses_prior), every batch is half prior, half online; null: all online.
 // Fills `log` as it goes, so a run that throws (DivergedError, a simulator error) keeps the
 // curves it had measured.
 void train(Env& env, ActorCritic& agent, const ReplayBuffer* prior, const RunConfig& config,

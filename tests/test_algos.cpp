@@ -35,7 +35,7 @@ Batch hand_made_batch() {
 }
 
 std::unique_ptr<ActorCritic> agent(const std::string& name) {
-  return make_agent(name, kObs, kAct, small_config(), 17);
+  return find_algorithm(name).make(kObs, kAct, small_config(), 17);
 }
 
 }  // namespace
@@ -122,9 +122,11 @@ TEST(ColAll, BcTermCoversTheWholeBatch) {
   EXPECT_NEAR(bc_part("rlpd", batch), 0.0, 1e-7);
 }
 
-TEST(Registry, PriorUseAndUnknownNames) {
-  EXPECT_FALSE(algo_uses_prior("ddpg"));
-  for (const char* n : {"rlpd", "col-prior", "col-all", "rapid-rl"}) EXPECT_TRUE(algo_uses_prior(n)) << n;
+TEST(Registry, RowsInThePapersColumnOrderWithPriorUseAndUnknownNames) {
+  EXPECT_EQ(algo_names(), (std::vector<std::string>{"rapid-rl", "rlpd", "col-prior", "col-all", "ddpg"}));
+  EXPECT_FALSE(find_algorithm("ddpg").uses_prior);
+  for (const char* n : {"rlpd", "col-prior", "col-all", "rapid-rl"}) EXPECT_TRUE(find_algorithm(n).uses_prior) << n;
+  EXPECT_EQ(find_algorithm("col-prior").display_name, "CoL-prior");
   try {
     agent("sac");
     FAIL();
@@ -156,7 +158,7 @@ TEST(CriticTarget, MasksTerminalsOnly) {
 TEST(ActorCritic, UpdateReducesCriticLossOnAFixedBatch) {
   AgentConfig config = small_config();
   config.critic_lr = 1e-3f;
-  auto a = make_agent("rapid-rl", kObs, kAct, config, 17);
+  auto a = find_algorithm("rapid-rl").make(kObs, kAct, config, 17);
   Batch batch = hand_made_batch();
   batch.not_terminal.setZero();  // y = r: a plain regression the critic must fit
   const float first = a->update(batch).critic_loss;
