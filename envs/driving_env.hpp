@@ -47,7 +47,6 @@ struct DrivingConfig {
   double rel_speed_norm = 15.0;    // m/s
   double max_accel = 4.0;          // m/s² at |a0| = 1
   int lane_change_interval = 4;    // decisions between two lane changes
-  float epsilon = 0.0f;            // the documented default ε
   int extra_features = 0;          // scenario features appended to the observation
   driving::RewardWeights weights;
 };
@@ -63,7 +62,6 @@ class DrivingEnv : public Env {
   int obs_dim() const override { return kCommonObs + config_.extra_features; }
   int act_dim() const override { return 2; }
   int horizon() const override { return config_.horizon; }
-  float default_epsilon() const override { return config_.epsilon; }
   void reset(std::uint64_t seed, VecRef obs) override;
   StepResult step(const ConstVecRef& action, VecRef obs) override;
   void set_builtin_driver(bool on) override { builtin_ = on; }

@@ -36,7 +36,6 @@ class RecordingEnv final : public Env {
   int obs_dim() const override { return inner_.obs_dim(); }
   int act_dim() const override { return inner_.act_dim(); }
   int horizon() const override { return inner_.horizon(); }
-  float default_epsilon() const override { return inner_.default_epsilon(); }
 
   void reset(std::uint64_t seed, VecRef obs) override {
     calls_.push_back({true, seed, 0.0f});

@@ -78,7 +78,7 @@ int run_bench(const BenchOptions& o) {
 
   report.update_scenario = scenarios.front();
   {
-    const RunConfig config = run_config_from_json(default_config_json(report.update_scenario));
+    const RunConfig config = run_config_from_json(default_config_json(report.update_scenario), report.update_scenario);
     const auto env = make_env(report.update_scenario);
     for (const std::string& algo : algo_names()) {
       std::cerr << "bench: " << algo << ": updates vs GEMM\n";
@@ -92,7 +92,7 @@ int run_bench(const BenchOptions& o) {
     sb.train_algo = o.train_algo;
     bench::TrainBenchOptions train = plan.train;
     train.algo = o.train_algo;
-    sb.train = bench::bench_train(s, run_config_from_json(default_config_json(s)), train);
+    sb.train = bench::bench_train(s, run_config_from_json(default_config_json(s), s), train);
   }
 
   if (o.quick || o.no_sweep) {

@@ -101,7 +101,7 @@ int build_datasets(const DatasetBuildSpec& spec) {
   ref.seed = spec.reference.seed;
   ref.config = spec.config;
   ref.out_dir = ref_dir;
-  const long steps = run_config_from_json(spec.config).steps;
+  const long steps = run_config_from_json(spec.config, spec.scenario).steps;
   for (const Source& s : sources(steps))
     if (s.step != steps) ref.checkpoint_steps.push_back(s.step);
   const std::string ref_hash = job_config_hash(ref);

@@ -164,16 +164,16 @@ void check_overrides(const GridChecker& check, const Grid& grid) {
     // Scenarios' defaults may differ, so say which one a shared override failed against.
     const std::string context = to_check.size() > 1 ? " (with the defaults of '" + scenario + "')" : "";
     try {
-      apply_overrides(config, grid.config, "config");
-      run_config_from_json(config);
+      apply_overrides(config, grid.config, scenario, "config");
+      run_config_from_json(config, scenario);
     } catch (const std::invalid_argument& e) {
       check.fail("config", without_prefix(e.what(), "config: ") + context);
     }
     if (!grid.scenario_config.contains(scenario)) continue;
     const std::string field = "scenario_config." + scenario;
     try {
-      apply_overrides(config, grid.scenario_config[scenario], field);
-      run_config_from_json(config);
+      apply_overrides(config, grid.scenario_config[scenario], scenario, field);
+      run_config_from_json(config, scenario);
     } catch (const std::invalid_argument& e) {
       check.fail(field, without_prefix(e.what(), field + ": "));
     }

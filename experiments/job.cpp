@@ -40,9 +40,9 @@ std::string job_config_hash(const JobSpec& spec) {
 nlohmann::json resolve_config(const std::string& scenario, const nlohmann::json& grid_overrides,
                               const nlohmann::json& set_overrides) {
   nlohmann::json config = default_config_json(scenario);
-  if (grid_overrides.is_object()) apply_overrides(config, grid_overrides, "grid");
-  if (set_overrides.is_object()) apply_overrides(config, set_overrides, "--set");
-  run_config_from_json(config);  // validates values
+  if (grid_overrides.is_object()) apply_overrides(config, grid_overrides, scenario, "grid");
+  if (set_overrides.is_object()) apply_overrides(config, set_overrides, scenario, "--set");
+  run_config_from_json(config, scenario);  // validates the whole
   return config;
 }
 
@@ -79,7 +79,7 @@ void add_curves(const TrainLog& log, nlohmann::json& record) {
 }  // namespace
 
 int run_job(const JobSpec& spec) {
-  const RunConfig config = run_config_from_json(spec.config);
+  const RunConfig config = run_config_from_json(spec.config, spec.scenario);
   std::unique_ptr<Env> env = make_env(spec.scenario);
   const Algorithm& algo = find_algorithm(spec.algo);
   check_dataset_fits(spec.algo, !spec.dataset_path.empty());

@@ -25,28 +25,29 @@ nlohmann::json default_config_json(const std::string& scenario) {
 }
 
 namespace {
-bool same_kind(const nlohmann::json& want, const nlohmann::json& got) {
-  if (want.is_number_integer()) return got.is_number_integer();
-  if (want.is_number()) return got.is_number();
-  if (want.is_array()) {
-    if (!got.is_array()) return false;
-    for (const auto& e : got)
-      if (!want.empty() && !same_kind(want.front(), e)) return false;
-    return true;
-  }
-  return want.type() == got.type();
+
+// The row of `name`, which must be a key of `scenario`.
+const ConfigKey& key_of(const std::string& name, const std::string& scenario, const std::vector<ConfigKey>& keys) {
+  const ConfigKey* key = find_config_key(name, keys);
+  if (!key) throw std::invalid_argument("unknown config key '" + name + "'");
+  if (!key->applies_to(scenario))
+    throw std::invalid_argument("config key '" + name + "' does not apply to scenario '" + scenario + "'");
+  return *key;
 }
+
 }  // namespace
 
-void apply_overrides(nlohmann::json& base, const nlohmann::json& overrides, const std::string& origin) {
+void apply_overrides(nlohmann::json& config, const nlohmann::json& overrides, const std::string& scenario,
+                     const std::string& origin, const std::vector<ConfigKey>& keys) {
   if (!overrides.is_object()) throw std::invalid_argument(origin + ": overrides must be an object");
-  for (const auto& [key, value] : overrides.items()) {
-    if (!base.contains(key)) throw std::invalid_argument(origin + ": unknown config key '" + key + "'");
-    if (!same_kind(base[key], value))
-      throw std::invalid_argument(origin + ": config key '" + key + "' expects " +
-                                  std::string(base[key].type_name()) + " like " + base[key].dump() +
-                                  ", got " + value.dump());
-    base[key] = value;
+  for (const auto& [name, value] : overrides.items()) {
+    try {
+      RunConfig scratch;
+      key_of(name, scenario, keys).read(value, scratch);  // checks the value where it is given
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(origin + ": " + e.what());
+    }
+    config[name] = value;
   }
 }
 
@@ -60,65 +61,15 @@ void parse_set_option(const std::string& assignment, nlohmann::json& overrides) 
   overrides[key] = value;
 }
 
-namespace {
-template <typename T>
-T positive(const nlohmann::json& j, const char* key) {
-  const T v = j.at(key).get<T>();
-  if (!(v > 0)) throw std::invalid_argument(std::string("config key '") + key + "' must be positive, got " + j.at(key).dump());
-  return v;
-}
-template <typename T>
-T non_negative(const nlohmann::json& j, const char* key) {
-  const T v = j.at(key).get<T>();
-  if (!(v >= 0)) throw std::invalid_argument(std::string("config key '") + key + "' must be ≥ 0, got " + j.at(key).dump());
-  return v;
-}
-std::vector<int> widths(const nlohmann::json& j, const char* key) {
-  std::vector<int> w = j.at(key).get<std::vector<int>>();
-  if (w.empty()) throw std::invalid_argument(std::string("config key '") + key + "' needs at least one layer");
-  for (int x : w)
-    if (x <= 0) throw std::invalid_argument(std::string("config key '") + key + "' has a non-positive width");
-  return w;
-}
-}  // namespace
-
-RunConfig run_config_from_json(const nlohmann::json& j) {
-  static const char* const kKeys[] = {"actor_hidden", "critic_hidden", "actor_lr", "critic_lr", "gamma", "tau",
-                                      "batch_size", "noise_std", "lambda_bc", "epsilon", "steps", "warmup_steps",
-                                      "eval_every", "eval_episodes", "last_k", "bc_log_every", "buffer_capacity"};
-  for (const char* k : kKeys)
-    if (!j.contains(k)) throw std::invalid_argument(std::string("config is missing key '") + k + "'");
-  for (const auto& [key, v] : j.items()) {
-    bool known = false;
-    for (const char* k : kKeys) known = known || key == k;
-    if (!known) throw std::invalid_argument("unknown config key '" + key + "'");
-  }
-  try {
-    RunConfig c;
-    c.agent.actor_hidden = widths(j, "actor_hidden");
-    c.agent.critic_hidden = widths(j, "critic_hidden");
-    c.agent.actor_lr = positive<float>(j, "actor_lr");
-    c.agent.critic_lr = positive<float>(j, "critic_lr");
-    c.agent.gamma = non_negative<float>(j, "gamma");
-    if (c.agent.gamma >= 1.0f) throw std::invalid_argument("config key 'gamma' must be below 1");
-    c.agent.tau = positive<float>(j, "tau");
-    if (c.agent.tau > 1.0f) throw std::invalid_argument("config key 'tau' must be at most 1");
-    c.agent.batch_size = positive<int>(j, "batch_size");
-    if (c.agent.batch_size < 2) throw std::invalid_argument("config key 'batch_size' must be at least 2");
-    c.agent.noise_std = non_negative<float>(j, "noise_std");
-    c.agent.lambda_bc = non_negative<float>(j, "lambda_bc");
-    c.agent.epsilon = j.at("epsilon").get<float>();
-    c.steps = positive<long>(j, "steps");
-    c.warmup_steps = non_negative<long>(j, "warmup_steps");
-    c.eval_every = positive<long>(j, "eval_every");
-    c.eval_episodes = positive<int>(j, "eval_episodes");
-    c.last_k = positive<int>(j, "last_k");
-    c.bc_log_every = positive<long>(j, "bc_log_every");
-    c.buffer_capacity = positive<long>(j, "buffer_capacity");
-    return c;
-  } catch (const nlohmann::json::exception& e) {
-    throw std::invalid_argument(std::string("config has a value of the wrong type: ") + e.what());
-  }
+RunConfig run_config_from_json(const nlohmann::json& j, const std::string& scenario,
+                               const std::vector<ConfigKey>& keys) {
+  if (!j.is_object()) throw std::invalid_argument("config must be a JSON object");
+  for (const ConfigKey& key : keys)
+    if (key.applies_to(scenario) && !j.contains(key.name))
+      throw std::invalid_argument("config is missing key '" + key.name + "'");
+  RunConfig config;
+  for (const auto& [name, value] : j.items()) key_of(name, scenario, keys).read(value, config);
+  return config;
 }
 
 }  // namespace rapid

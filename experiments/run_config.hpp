@@ -1,7 +1,7 @@
 // The fully resolved configuration of one training job: the agent's hyper-parameters plus the
-// training schedule. Defaults live in one JSON file per scenario (experiments/configs/), a grid
-// may override keys, and `rapid run --set key=value` overrides last. Every key must be known and
-// of the default's type; the resolved config is recorded in the run record and hashed.
+// training schedule. Its keys are the rows of config_keys.hpp. Values live in one JSON file per
+// scenario (experiments/configs/<scenario>.json); a grid may override keys, and `rapid run --set
+// key=value` overrides last. The resolved config is recorded in the run record and hashed.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -9,34 +9,40 @@
 #include <vector>
 
 #include "algos/agent_config.hpp"
+#include "experiments/config_keys.hpp"
 
 namespace rapid {
 
+// No defaults: every field comes from the scenario's config file through its config key.
 struct RunConfig {
   AgentConfig agent;
-  long steps = 20000;          // environment decisions of training
-  long warmup_steps = 1000;    // uniform-random actions and no updates before this step
-  long eval_every = 2000;      // evaluate at the first episode boundary after each multiple
-  int eval_episodes = 5;       // deterministic policy, fixed evaluation seeds
-  int last_k = 3;              // final performance = mean of the last K evaluations
-  long bc_log_every = 500;     // BC-loss curve resolution (mean over the window's updates)
-  long buffer_capacity = 1000000;
+  long steps{};
+  long warmup_steps{};
+  long eval_every{};
+  int eval_episodes{};
+  int last_k{};
+  long bc_log_every{};
+  long buffer_capacity{};
 };
 
-// The folder with the per-scenario default files; RAPID_CONFIG_DIR overrides the built-in path.
+// The folder with the per-scenario config files; RAPID_CONFIG_DIR overrides the built-in path.
 std::string config_dir();
 
-// The defaults of `scenario` (throws std::runtime_error if its file is missing or malformed).
+// The config file of `scenario` as it is (throws std::runtime_error if it is missing or not a
+// JSON object; its keys are checked when it is parsed).
 nlohmann::json default_config_json(const std::string& scenario);
 
-// Applies `overrides` (an object) onto `base`: every key must exist in `base` with the same JSON
-// type (integers where integers are expected). Throws std::invalid_argument naming the key.
-void apply_overrides(nlohmann::json& base, const nlohmann::json& overrides, const std::string& origin);
+// Applies `overrides` (an object) onto `config`, a config of `scenario`: each key must be a config
+// key of that scenario with a valid value. Throws std::invalid_argument "ORIGIN: …" naming the key.
+void apply_overrides(nlohmann::json& config, const nlohmann::json& overrides, const std::string& scenario,
+                     const std::string& origin, const std::vector<ConfigKey>& keys = config_keys());
 
 // Parses "key=value" (value as JSON, else as a plain string) into `overrides`.
 void parse_set_option(const std::string& assignment, nlohmann::json& overrides);
 
-// Converts a validated config object; throws std::invalid_argument naming a bad value.
-RunConfig run_config_from_json(const nlohmann::json& j);
+// Converts a config of `scenario`: it must have every key of that scenario and no other, each
+// with a valid value. Throws std::invalid_argument naming the key.
+RunConfig run_config_from_json(const nlohmann::json& j, const std::string& scenario,
+                               const std::vector<ConfigKey>& keys = config_keys());
 
 }  // namespace rapid

@@ -15,6 +15,12 @@ AgentConfig small_config() {
   AgentConfig c;
   c.actor_hidden = {8, 8};
   c.critic_hidden = {8, 8};
+  c.actor_lr = 3e-4f;
+  c.critic_lr = 3e-4f;
+  c.gamma = 0.99f;
+  c.tau = 0.005f;
+  c.batch_size = kBatch;
+  c.noise_std = 0.1f;
   c.epsilon = -0.15f;
   c.lambda_bc = 1.0f;
   return c;

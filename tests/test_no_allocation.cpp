@@ -67,7 +67,12 @@ TEST_P(UpdateAllocation, GradientUpdateAllocatesNothingAfterWarmUp) {
   const int obs_dim = 18, act_dim = 2;
   AgentConfig config;
   config.actor_hidden = config.critic_hidden = {128, 128};
+  config.actor_lr = 3e-4f;
+  config.critic_lr = 3e-4f;
+  config.gamma = 0.99f;
+  config.tau = 0.005f;
   config.batch_size = 128;
+  config.lambda_bc = 1.0f;
   config.epsilon = 0.0f;
   const Algorithm& algo = find_algorithm(GetParam());
   auto agent = algo.make(obs_dim, act_dim, config, 5);

@@ -46,7 +46,7 @@ TEST(SweepCli, EachMalformedGridIsRejectedWithOneLineAndNoFolder) {
       {"unknown config key", edited([](json& g) { g["config"]["learning_rate"] = 0.1; }),
        "config: unknown config key 'learning_rate'"},
       {"config value of the wrong type", edited([](json& g) { g["config"]["batch_size"] = 6.5; }),
-       "config: config key 'batch_size' expects number"},
+       "config: config key 'batch_size' expects an integer"},
       {"bad scenario override", edited([](json& g) { g["scenario_config"] = {{"pendulum", {{"tau", "x"}}}}; }),
        "scenario_config.pendulum: config key 'tau'"},
   };
