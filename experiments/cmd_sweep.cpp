@@ -17,7 +17,6 @@
 #include "experiments/sweep_runner.hpp"
 #include "experiments/sweep_selection.hpp"
 #include "experiments/sweep_slurm.hpp"
-#include "experiments/summary.hpp"
 #include "experiments/sweep_state.hpp"
 #include "experiments/sweep_task.hpp"
 
@@ -222,7 +221,7 @@ int sweep_command(const SweepOptions& o) {
       std::cout << "  " << j.state << " " << j.id << ": " << j.error << "\n";
   if (report.interrupted_by) return 130;
   // Refresh the reports from whatever records exist (a partial sweep or an --only rerun too).
-  if (!o.no_summary) write_reports(dir.string(), "", /*plots=*/true);
+  if (!o.no_summary) summarize_sweep(dir.string(), "", /*plots=*/true);
   return report.all_ok() ? kExitOk : kExitFailed;
 }
 

@@ -22,6 +22,11 @@ namespace rapid {
 
 namespace fs = std::filesystem;
 
+const std::vector<std::string>& dataset_names() {
+  static const std::vector<std::string> names = {"initial", "medium", "final", "final+medium"};
+  return names;
+}
+
 namespace {
 
 // The reference agent's checkpoints: 1/10 and 1/2 of the budget, and the end.

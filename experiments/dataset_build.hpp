@@ -9,10 +9,16 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "experiments/grid.hpp"  // ReferenceSettings: a grid's "reference" object
+#include <cstdint>
+#include <vector>
+
 #include "experiments/job.hpp"
 
 namespace rapid {
+
+// The prior datasets a scenario has, in the table's order. `rapid run --dataset` takes these
+// names (looked up in a DatasetFolder) or a path to any D4RL-layout file.
+const std::vector<std::string>& dataset_names();
 
 // Where `rapid dataset build --dir ROOT` keeps one scenario's files: ROOT/<scenario>/ holds
 // reference/ (the reference agent's job folder: record.json, actor_<step>.ckpt, actor.ckpt),
@@ -25,6 +31,13 @@ struct DatasetFolder {
   std::string dataset(const std::string& name) const { return dir + "/" + name + ".h5"; }
   std::string done_marker() const { return dir + "/build.json"; }
   std::string progress() const { return dir + "/" + job_files::kProgress; }
+};
+
+// The reference agent behind the datasets and how its data is collected (a grid's "reference").
+struct ReferenceSettings {
+  std::uint64_t seed = 1000;   // its own seed, never one of the evaluation seeds
+  long transitions = 20000;    // collected per dataset
+  float noise_std = 0.1f;      // exploration noise while collecting
 };
 
 struct DatasetBuildSpec {

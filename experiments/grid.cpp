@@ -9,7 +9,7 @@
 
 #include "algos/registry.hpp"
 #include "envs/env.hpp"
-#include "experiments/job.hpp"
+#include "experiments/dataset_build.hpp"
 #include "experiments/run_config.hpp"
 
 namespace rapid {

@@ -24,13 +24,9 @@
 #include <string>
 #include <vector>
 
-namespace rapid {
+#include "experiments/dataset_build.hpp"  // ReferenceSettings, the grid's "reference" object
 
-struct ReferenceSettings {
-  std::uint64_t seed = 1000;
-  long transitions = 20000;
-  float noise_std = 0.1f;
-};
+namespace rapid {
 
 struct Grid {
   std::string name;

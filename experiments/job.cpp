@@ -18,11 +18,6 @@ namespace rapid {
 
 namespace fs = std::filesystem;
 
-const std::vector<std::string>& dataset_names() {
-  static const std::vector<std::string> names = {"initial", "medium", "final", "final+medium"};
-  return names;
-}
-
 void check_dataset_fits(const std::string& algo, bool has_dataset) {
   const bool needs = find_algorithm(algo).uses_prior;
   if (needs && !has_dataset) throw std::invalid_argument("algorithm '" + algo + "' needs a prior dataset");

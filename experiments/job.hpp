@@ -17,9 +17,6 @@ inline constexpr const char* kProgress = "progress.json";  // how far it is, whi
 inline constexpr const char* kActor = "actor.ckpt";        // the trained actor
 }  // namespace job_files
 
-// The dataset names a cell may use besides a path (SPEC §3), in the table's order.
-const std::vector<std::string>& dataset_names();
-
 struct JobSpec {
   std::string scenario;
   std::string algo;

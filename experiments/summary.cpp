@@ -5,6 +5,7 @@
 
 #include "algos/registry.hpp"
 #include "core/hash.hpp"
+#include "experiments/dataset_build.hpp"
 #include "experiments/job.hpp"
 #include "experiments/summary_claims.hpp"
 #include "experiments/summary_curves.hpp"

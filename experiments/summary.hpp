@@ -131,9 +131,4 @@ Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptio
 // summary.json ("rapid.summary/1", see docs/reports.md).
 nlohmann::json summary_to_json(const Summary& summary);
 
-// Writes table.md, table.tex, table.csv, summary.json and claims.md for `sweep_dir` into `out_dir`
-// (default: the sweep folder) and, with `plots`, Figures 2–3 through scripts/plot. Returns the
-// exit code of `rapid summarize` (1 when only the figures failed). Defined in cmd_summarize.cpp.
-int write_reports(const std::string& sweep_dir, const std::string& out_dir, bool plots);
-
 }  // namespace rapid

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "experiments/job.hpp"
+
 namespace rapid {
 
 namespace {
@@ -30,8 +32,8 @@ LoadedRecord load_cell_record(const SweepFolder& folder, const SweepJob& cell) {
   const auto parsed = read_json_file(path);
   if (!parsed || !parsed->is_object()) return not_usable(cell.seed, "corrupt", "record.json is not a JSON object");
   const nlohmann::json& record = *parsed;
-  if (record.value("schema", "") != "rapid.run/1")
-    return not_usable(cell.seed, "corrupt", "record.json: schema is not rapid.run/1");
+  if (record.value("schema", "") != kRunRecordSchema)
+    return not_usable(cell.seed, "corrupt", std::string("record.json: schema is not ") + kRunRecordSchema);
   if (!names_cell(record, cell)) return not_usable(cell.seed, "corrupt", "record.json names another cell");
 
   const std::string status = record.value("status", "");
