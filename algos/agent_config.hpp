@@ -1,5 +1,5 @@
 // Hyper-parameters of the actor-critic backbone. Each field is a row of the run config's key
-// table (experiments/config_keys.cpp: what it means, which values it accepts); the values runs
+// table (experiments/run/config_keys.cpp: what it means, which values it accepts); the values runs
 // use come from experiments/configs/<scenario>.json. There are no defaults here on purpose: a
 // value that does not come from a config file must never reach a run unnoticed.
 #pragma once

@@ -1,4 +1,4 @@
-// The config key table (experiments/config_keys.cpp) against everything that must agree with it:
+// The config key table (experiments/run/config_keys.cpp) against everything that must agree with it:
 // every scenario's config file, the key table of docs/algorithms.md and the ε table of
 // docs/scenarios.md; and overrides checked by key, type, value and scenario.
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "envs/env.hpp"
-#include "experiments/run_config.hpp"
+#include "experiments/run/run_config.hpp"
 
 using namespace rapid;
 

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <functional>
 
-#include "experiments/grid.hpp"
-#include "experiments/sweep_graph.hpp"
-#include "experiments/sweep_selection.hpp"
+#include "experiments/sweep/graph.hpp"
+#include "experiments/sweep/grid.hpp"
+#include "experiments/sweep/selection.hpp"
 
 namespace rapid {
 namespace {
