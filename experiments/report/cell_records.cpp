@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "experiments/run/job.hpp"
+#include "experiments/run/record.hpp"
 
 namespace rapid {
 

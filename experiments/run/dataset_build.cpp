@@ -88,54 +88,49 @@ Dataset collect(Env& env, Mlp& actor, long n, float noise_std, std::uint64_t see
   return builder.finish();
 }
 
-}  // namespace
 
-int build_datasets(const DatasetBuildSpec& spec) {
-  const DatasetFolder folder(spec.dir, spec.scenario);
-  const std::string ref_dir = folder.reference();
-  fs::create_directories(folder.dir);
-  // A killed earlier build may have left temporaries of its files here.
+// A killed earlier build may have left temporaries of its files behind.
+void remove_leftovers(const DatasetFolder& folder) {
   std::vector<std::string> outputs = {folder.done_marker(), folder.progress()};
   for (const auto& name : dataset_names()) outputs.push_back(folder.dataset(name));
   if (const int n = remove_leftover_temporaries(outputs); n > 0)
     std::cerr << "dataset build: removed " << n << " temporary file(s) an interrupted build left in " << folder.dir << "\n";
+}
 
+// The reference agent: an ordinary DDPG job with its own seed and the checkpoints the sources need.
+JobSpec reference_job(const DatasetBuildSpec& spec, const DatasetFolder& folder, long steps) {
   JobSpec ref;
   ref.scenario = spec.scenario;
   ref.algo = "ddpg";
   ref.seed = spec.reference.seed;
   ref.config = spec.config;
-  ref.out_dir = ref_dir;
-  const long steps = run_config_from_json(spec.config, spec.scenario).steps;
+  ref.out_dir = folder.reference();
   for (const Source& s : sources(steps))
     if (s.step != steps) ref.checkpoint_steps.push_back(s.step);
-  const std::string ref_hash = job_config_hash(ref);
+  return ref;
+}
 
+// Stage 1: trains the reference agent unless its record and checkpoints are up to date. False
+// when it failed (its record says why).
+bool train_reference(const DatasetBuildSpec& spec, const JobSpec& ref, const std::string& ref_hash, long steps) {
   bool have_checkpoints = true;
-  for (const Source& s : sources(steps)) have_checkpoints = have_checkpoints && fs::exists(checkpoint_path(ref_dir, s.step, steps));
-  const std::string ref_record = ref_dir + "/" + job_files::kRecord;
-  if (spec.force || !record_is_done(ref_record, ref_hash) || !have_checkpoints) {
-    std::cerr << "dataset build: training the reference agent for " << spec.scenario << " (" << steps << " steps)\n";
-    if (run_job(ref) != 0) {
-      std::cerr << "dataset build: the reference agent failed; see " << ref_record << "\n";
-      return 1;
-    }
-  }
-  if (spec.reference_only) return 0;
+  for (const Source& s : sources(steps))
+    have_checkpoints = have_checkpoints && fs::exists(checkpoint_path(ref.out_dir, s.step, steps));
+  const std::string ref_record = ref.out_dir + "/" + job_files::kRecord;
+  if (!spec.force && record_is_done(ref_record, ref_hash) && have_checkpoints) return true;
+  std::cerr << "dataset build: training the reference agent for " << spec.scenario << " (" << steps << " steps)\n";
+  if (run_job(ref) == 0) return true;
+  std::cerr << "dataset build: the reference agent failed; see " << ref_record << "\n";
+  return false;
+}
 
-  // The datasets answer to the reference agent and the collection settings.
-  const nlohmann::json build_key = {{"reference_hash", ref_hash},
-                                    {"transitions", spec.reference.transitions},
-                                    {"noise_std", spec.reference.noise_std}};
-  const std::string build_hash = fnv1a_hex(build_key.dump());
-  bool have_files = true;
-  for (const auto& name : dataset_names()) have_files = have_files && fs::exists(folder.dataset(name));
-  if (!spec.force && have_files && record_is_done(folder.done_marker(), build_hash)) return 0;
-
+// Stage 2: each source checkpoint's rollouts, with their metadata, reporting progress over all
+// sources' transitions so that `rapid status` and the sweep see the build alive.
+std::map<std::string, Dataset> collect_sources(const DatasetBuildSpec& spec, const DatasetFolder& folder, long steps,
+                                               const std::string& build_hash) {
   std::unique_ptr<Env> env = make_env(spec.scenario);
   std::map<std::string, Dataset> made;
   int index = 0;
-  // Progress over all sources' transitions, so `rapid status` and the sweep see the build alive.
   const long total = static_cast<long>(sources(steps).size()) * spec.reference.transitions;
   const auto t_collect = Clock::now();
   auto report = [&](long done) {
@@ -143,7 +138,7 @@ int build_datasets(const DatasetBuildSpec& spec) {
     write_progress(folder.dir, done, total, s > 0 ? done / s : 0.0);
   };
   for (const Source& s : sources(steps)) {
-    const std::string ckpt = checkpoint_path(ref_dir, s.step, steps);
+    const std::string ckpt = checkpoint_path(folder.reference(), s.step, steps);
     Mlp actor = Mlp::load(ckpt);
     const long before = index * spec.reference.transitions;
     Dataset d = collect(*env, actor, spec.reference.transitions, spec.reference.noise_std, spec.reference.seed, index++,
@@ -157,24 +152,55 @@ int build_datasets(const DatasetBuildSpec& spec) {
     made.emplace(s.name, std::move(d));
     report(index * spec.reference.transitions);
   }
-  Metadata mixed_meta = made.at("final").metadata;
-  mixed_meta[meta::kSourceCheckpoint] = "half final, half medium (whole episodes)";
-  made.emplace("final+medium", mix_final_medium(made.at("final"), made.at("medium"), mixed_meta));
-  for (const auto& name : dataset_names()) write_dataset(folder.dataset(name), made.at(name));
+  return made;
+}
 
-  // The table is only meaningful when data quality is ordered; say so when it is not.
+// Each dataset's episodes and return. The table is only meaningful when data quality is ordered
+// initial < medium < final, so a warning says when it is not.
+nlohmann::json check_quality(const std::string& scenario, const std::map<std::string, Dataset>& made) {
   nlohmann::json quality = nlohmann::json::object();
   for (const auto& name : dataset_names()) {
     const DatasetStats st = dataset_stats(made.at(name));
     quality[name] = {{"episodes", st.episodes}, {"return_mean", st.return_mean}, {"return_std", st.return_std}};
-    std::cerr << "dataset build: " << spec.scenario << "/" << name << ": " << st.episodes << " episodes, return "
+    std::cerr << "dataset build: " << scenario << "/" << name << ": " << st.episodes << " episodes, return "
               << st.return_mean << " ± " << st.return_std << "\n";
   }
   const double q_initial = quality["initial"]["return_mean"], q_medium = quality["medium"]["return_mean"],
                q_final = quality["final"]["return_mean"];
   if (!(q_initial < q_medium && q_medium < q_final))
-    std::cerr << "dataset build: warning: " << spec.scenario << ": dataset quality is not ordered initial < medium < final ("
+    std::cerr << "dataset build: warning: " << scenario << ": dataset quality is not ordered initial < medium < final ("
               << q_initial << ", " << q_medium << ", " << q_final << "); see docs/datasets.md\n";
+  return quality;
+}
+
+}  // namespace
+
+int build_datasets(const DatasetBuildSpec& spec) {
+  const DatasetFolder folder(spec.dir, spec.scenario);
+  fs::create_directories(folder.dir);
+  remove_leftovers(folder);
+
+  const long steps = run_config_from_json(spec.config, spec.scenario).steps;
+  const JobSpec ref = reference_job(spec, folder, steps);
+  const std::string ref_hash = job_config_hash(ref);
+  if (!train_reference(spec, ref, ref_hash, steps)) return 1;
+  if (spec.reference_only) return 0;
+
+  // The datasets answer to the reference agent and the collection settings.
+  const nlohmann::json build_key = {{"reference_hash", ref_hash},
+                                    {"transitions", spec.reference.transitions},
+                                    {"noise_std", spec.reference.noise_std}};
+  const std::string build_hash = fnv1a_hex(build_key.dump());
+  bool have_files = true;
+  for (const auto& name : dataset_names()) have_files = have_files && fs::exists(folder.dataset(name));
+  if (!spec.force && have_files && record_is_done(folder.done_marker(), build_hash)) return 0;
+
+  std::map<std::string, Dataset> made = collect_sources(spec, folder, steps, build_hash);
+  Metadata mixed_meta = made.at("final").metadata;
+  mixed_meta[meta::kSourceCheckpoint] = "half final, half medium (whole episodes)";
+  made.emplace("final+medium", mix_final_medium(made.at("final"), made.at("medium"), mixed_meta));
+  for (const auto& name : dataset_names()) write_dataset(folder.dataset(name), made.at(name));
+  const nlohmann::json quality = check_quality(spec.scenario, made);
 
   nlohmann::json manifest = {{"status", "ok"}, {"quality", quality}, {"config_hash", build_hash}, {"reference_hash", ref_hash},
                              {"scenario", spec.scenario}, {"transitions", spec.reference.transitions},

@@ -10,8 +10,7 @@
 #include "core/dataset_io.hpp"
 #include "core/hash.hpp"
 #include "envs/env.hpp"
-#include "experiments/run/json_numbers.hpp"
-#include "experiments/run/provenance.hpp"
+#include "experiments/run/record.hpp"
 #include "experiments/run/trainer.hpp"
 
 namespace rapid {
@@ -52,23 +51,26 @@ void write_progress(const std::string& dir, long step, long steps, double steps_
 
 namespace {
 
-// The record's curves: evaluations, training episodes, BC losses and the other losses.
-void add_curves(const TrainLog& log, nlohmann::json& record) {
-  record["eval"] = nlohmann::json::array();
-  for (const EvalPoint& e : log.eval)
-    record["eval"].push_back({{"step", e.step}, {"target_step", e.target_step}, {"return_mean", e.return_mean},
-                              {"return_std", e.return_std}, {"collision_rate", e.collision_rate}});
-  record["train_episodes"] = nlohmann::json::array();
-  for (const TrainEpisode& e : log.episodes)
-    record["train_episodes"].push_back(
-        {{"step", e.step}, {"return", e.ret}, {"length", e.length}, {"collision", e.collision}});
-  record["bc_loss"] = nlohmann::json::array();
-  record["losses"] = nlohmann::json::array();
-  for (const LossPoint& p : log.losses) {
-    record["bc_loss"].push_back({{"step", p.step}, {"prior", json_number(p.bc_prior)}, {"online", json_number(p.bc_online)}});
-    record["losses"].push_back({{"step", p.step}, {"critic", json_number(p.critic_loss)},
-                                {"actor", json_number(p.actor_loss)}, {"q_mean", json_number(p.q_mean)}});
-  }
+// A killed earlier attempt of this job may have left temporaries of its files behind.
+void remove_leftovers(const JobSpec& spec) {
+  std::vector<std::string> outputs;
+  for (const char* file : {job_files::kRecord, job_files::kProgress, job_files::kActor})
+    outputs.push_back(spec.out_dir + "/" + file);
+  for (long step : spec.checkpoint_steps) outputs.push_back(checkpoint_file(spec.out_dir, step));
+  if (const int n = remove_leftover_temporaries(outputs); n > 0)
+    std::cerr << "rapid run: removed " << n << " temporary file(s) an interrupted attempt left in " << spec.out_dir << "\n";
+}
+
+// The prior buffer of a job whose algorithm uses prior data: its dataset, checked against the
+// scenario's dimensions and the action box.
+ReplayBuffer load_prior(const JobSpec& spec, const Env& env) {
+  const Dataset data = read_dataset(spec.dataset_path, {env.obs_dim(), env.act_dim(), spec.scenario});
+  // Every environment's action box is [-1, 1]; data outside it came from another task.
+  const float max_abs = data.actions.cwiseAbs().maxCoeff();
+  if (max_abs > 1.0f)
+    throw std::runtime_error("dataset " + spec.dataset_path + ": actions must lie in [-1, 1], found |a| = " +
+                             std::to_string(max_abs));
+  return make_prior_buffer(data);
 }
 
 }  // namespace
@@ -79,40 +81,16 @@ int run_job(const JobSpec& spec) {
   const Algorithm& algo = find_algorithm(spec.algo);
   check_dataset_fits(spec.algo, !spec.dataset_path.empty());
   fs::create_directories(spec.out_dir);
-  // A killed earlier attempt of this job may have left temporaries of its files here.
-  std::vector<std::string> outputs;
-  for (const char* file : {job_files::kRecord, job_files::kProgress, job_files::kActor})
-    outputs.push_back(spec.out_dir + "/" + file);
-  for (long step : spec.checkpoint_steps) outputs.push_back(checkpoint_file(spec.out_dir, step));
-  if (const int n = remove_leftover_temporaries(outputs); n > 0)
-    std::cerr << "rapid run: removed " << n << " temporary file(s) an interrupted attempt left in " << spec.out_dir << "\n";
+  remove_leftovers(spec);
 
-  nlohmann::json record = {
-      {"schema", kRunRecordSchema},
-      {"status", "failed"},
-      {"error", nullptr},
-      {"cell", {{"scenario", spec.scenario},
-                {"dataset", spec.dataset.empty() ? nlohmann::json(nullptr) : nlohmann::json(spec.dataset)},
-                {"algo", spec.algo},
-                {"seed", spec.seed}}},
-      {"config", spec.config},
-      {"provenance", provenance_json()},
-  };
-  record["provenance"]["start_time"] = utc_now_iso8601();
+  nlohmann::json record = start_record(spec);
   const auto t0 = Clock::now();
   TrainLog log;
   try {
     record["config_hash"] = job_config_hash(spec);
     ReplayBuffer prior;
     if (algo.uses_prior) {
-      const Dataset data =
-          read_dataset(spec.dataset_path, {env->obs_dim(), env->act_dim(), spec.scenario});
-      // Every environment's action box is [-1, 1]; data outside it came from another task.
-      const float max_abs = data.actions.cwiseAbs().maxCoeff();
-      if (max_abs > 1.0f)
-        throw std::runtime_error("dataset " + spec.dataset_path + ": actions must lie in [-1, 1], found |a| = " +
-                                 std::to_string(max_abs));
-      prior = make_prior_buffer(data);
+      prior = load_prior(spec, *env);
       record["dataset_file"] = spec.dataset_path;
     }
     auto agent = algo.make(env->obs_dim(), env->act_dim(), config.agent, stream_seed(spec.seed, Stream::kNetworkInit));
@@ -133,16 +111,7 @@ int run_job(const JobSpec& spec) {
     record["status"] = "failed";
     record["error"] = e.what();
   }
-  add_curves(log, record);
-  const auto [final_mean, final_std] = final_performance(log, config.last_k);
-  record["final"] = {{"return_mean", final_mean}, {"return_std", final_std}, {"last_k", config.last_k}};
-  const double wall = seconds_since(t0);
-  record["timing"] = {{"wall_s", wall},
-                      {"env_steps_per_s", log.env_seconds > 0 ? log.env_steps / log.env_seconds : 0.0},
-                      {"updates_per_s", log.update_seconds > 0 ? log.updates / log.update_seconds : 0.0},
-                      {"eval_s", log.eval_seconds},
-                      {"train_steps_per_s", wall > 0 ? log.env_steps / wall : 0.0}};
-  record["provenance"]["end_time"] = utc_now_iso8601();
+  finish_record(record, log, config.last_k, seconds_since(t0));
   write_file_atomic(spec.out_dir + "/" + job_files::kRecord, record.dump(1));
   if (record["status"] != "ok") std::cerr << "rapid run: " << record["status"].get<std::string>() << ": "
                                           << record["error"].get<std::string>() << "\n";

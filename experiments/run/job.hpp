@@ -1,5 +1,5 @@
 // One training job: a table cell (scenario, dataset, algorithm, seed) with its resolved config.
-// run_job trains it and writes its run record (SPEC §8) atomically into the job folder.
+// run_job trains it and writes its run record (record.hpp) atomically into the job folder.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -7,8 +7,6 @@
 #include <vector>
 
 namespace rapid {
-
-inline constexpr const char* kRunRecordSchema = "rapid.run/1";
 
 // What a job leaves in its folder.
 namespace job_files {

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <ostream>
 #include <string>
 #include <thread>
 
@@ -50,6 +51,27 @@ SweepLock::SweepLock(const std::filesystem::path& sweep_dir) {
 
 SweepLock::~SweepLock() {
   if (fd_ >= 0) ::close(fd_);  // closing releases the flock
+}
+
+SharedSweepLock::SharedSweepLock(const std::filesystem::path& sweep_dir, std::ostream& out) {
+  const std::string path = (sweep_dir / sweep_files::kLock).string();
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) {
+    out << "rapid sweep task: warning: cannot open " << path << ": " << std::strerror(errno) << "\n";
+    return;
+  }
+  if (::flock(fd_, LOCK_SH | LOCK_NB) == 0) return;
+  if (errno == EWOULDBLOCK) {
+    out << "rapid sweep task: waiting for " << path << " (another rapid sweep holds the folder)" << std::endl;
+    if (::flock(fd_, LOCK_SH) == 0) return;
+  }
+  out << "rapid sweep task: warning: cannot lock " << path << ": " << std::strerror(errno) << "\n";
+  ::close(fd_);
+  fd_ = -1;
+}
+
+SharedSweepLock::~SharedSweepLock() {
+  if (fd_ >= 0) ::close(fd_);
 }
 
 bool sweep_lock_held(const std::filesystem::path& sweep_dir) {

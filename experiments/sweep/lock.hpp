@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <ostream>
 #include <stdexcept>
 
 namespace rapid {
@@ -22,6 +23,22 @@ class SweepLock {
   ~SweepLock();
   SweepLock(const SweepLock&) = delete;
   SweepLock& operator=(const SweepLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
+// What a cluster array task holds while it runs (slurm_task.hpp): the same lock, shared, so a
+// local `rapid sweep` or a resubmission (both exclusive) refuse a folder whose jobs are running,
+// while tasks run side by side. A submission in progress holds the lock briefly: the task waits
+// for it. On file systems without flock support (some parallel file systems) the task says so on
+// `out` and runs anyway: that costs only this protection.
+class SharedSweepLock {
+ public:
+  SharedSweepLock(const std::filesystem::path& sweep_dir, std::ostream& out);
+  ~SharedSweepLock();
+  SharedSweepLock(const SharedSweepLock&) = delete;
+  SharedSweepLock& operator=(const SharedSweepLock&) = delete;
 
  private:
   int fd_ = -1;

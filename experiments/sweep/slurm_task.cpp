@@ -1,16 +1,12 @@
 #include "experiments/sweep/slurm_task.hpp"
 
-#include <fcntl.h>
-#include <sys/file.h>
-#include <unistd.h>
-
-#include <cerrno>
 #include <csignal>
-#include <cstring>
+#include <utility>
 
 #include "core/atomic_file.hpp"
 #include "core/clock.hpp"
 #include "experiments/sweep/attempt.hpp"
+#include "experiments/sweep/lock.hpp"
 #include "experiments/sweep/process_pool.hpp"
 
 namespace rapid {
@@ -41,27 +37,6 @@ std::vector<TaskEntry> read_task_list(const fs::path& path) {
 }
 
 namespace {
-
-// Tasks hold the folder's lock shared while they run: a local `rapid sweep` or a resubmission
-// (both take it exclusively) then refuse to start on a folder whose jobs are running. A
-// submission in progress holds it briefly, so a task waits for it. File systems without flock
-// support (some parallel file systems) only cost this protection, not the task.
-int hold_lock_shared(const SweepFolder& folder, std::ostream& out) {
-  const std::string path = folder.path(sweep_files::kLock).string();
-  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd < 0) {
-    out << "rapid sweep task: warning: cannot open " << path << ": " << std::strerror(errno) << "\n";
-    return -1;
-  }
-  if (::flock(fd, LOCK_SH | LOCK_NB) == 0) return fd;
-  if (errno == EWOULDBLOCK) {
-    out << "rapid sweep task: waiting for " << path << " (another rapid sweep holds the folder)" << std::endl;
-    if (::flock(fd, LOCK_SH) == 0) return fd;
-  }
-  out << "rapid sweep task: warning: cannot lock " << path << ": " << std::strerror(errno) << "\n";
-  ::close(fd);
-  return -1;
-}
 
 struct AttemptEnd {
   ChildExit exit;
@@ -95,60 +70,36 @@ AttemptEnd run_attempt(ProcessPool& pool, const SweepFolder& folder, const Sweep
   }
 }
 
-const SweepJob* find_job(const SweepFolder& folder, const std::string& id) {
-  for (const SweepJob& job : folder.graph.jobs)
-    if (job.id() == id) return &job;
-  return nullptr;
-}
-
-}  // namespace
-
-int run_sweep_task(const SweepFolder& folder, const std::string& list, std::size_t index, const std::string& binary,
-                   std::ostream& out) {
+// The job that entry `index` of the task list names; throws std::invalid_argument (a usage error)
+// for a bad index, list or job id.
+std::pair<TaskEntry, const SweepJob*> task_job(const SweepFolder& folder, const std::string& list, std::size_t index) {
   const fs::path list_path = fs::path(list).is_absolute() ? fs::path(list) : folder.path(list);
   const std::vector<TaskEntry> entries = read_task_list(list_path);
   if (index >= entries.size())
     throw std::invalid_argument("--run-job: index " + std::to_string(index) + " is past the end of " + list + " (" +
                                 std::to_string(entries.size()) + " jobs)");
   const TaskEntry& entry = entries[index];
-  const SweepJob* found = find_job(folder, entry.job);
-  if (!found)
-    throw std::invalid_argument("--run-job: " + entry.job + " is not a job of the grid in " + folder.dir.string() +
-                                " (the grid changed since the submission; submit again)");
-  const SweepJob& job = *found;
+  for (const SweepJob& job : folder.graph.jobs)
+    if (job.id() == entry.job) return {entry, &job};
+  throw std::invalid_argument("--run-job: " + entry.job + " is not a job of the grid in " + folder.dir.string() +
+                              " (the grid changed since the submission; submit again)");
+}
 
-  // Dependencies are normally settled by the scheduler (afterok), but a task must not train on a
-  // half-built dataset if someone submitted or released it by hand.
+// Dependencies are normally settled by the scheduler (afterok), but a task must not train on a
+// half-built dataset if someone submitted or released it by hand.
+bool dependencies_done(const SweepFolder& folder, const SweepJob& job, std::ostream& out) {
   for (std::size_t d : job.deps)
     if (!job_is_done(folder, folder.graph.jobs[d])) {
       out << "rapid sweep task: " << job.id() << " needs " << folder.graph.jobs[d].id()
           << ", which is not done; see `rapid status`, then submit again\n";
-      return 1;
+      return false;
     }
-  const int lock_fd = hold_lock_shared(folder, out);
-  struct CloseLock {
-    int fd;
-    ~CloseLock() {
-      if (fd >= 0) ::close(fd);
-    }
-  } close_lock{lock_fd};
+  return true;
+}
 
-  if (!entry.force && job_is_done(folder, job)) {
-    out << "rapid sweep task: " << job.id() << " is already done\n";
-    return 0;
-  }
-  std::string expected_hash;
-  if (job.kind == JobKind::kCell) {
-    try {
-      expected_hash = expected_cell_hash(folder, job);
-    } catch (const std::exception& e) {
-      const AttemptVerdict verdict{"failed", false, e.what()};
-      record_outcome(folder, job, verdict, 0, -1, 0);
-      out << "rapid sweep task: failed " << job.id() << ": " << verdict.error << "\n";
-      return 1;
-    }
-  }
-
+// Attempts until one succeeds or none is left, then the outcome note; returns the task's exit code.
+int run_attempts(const SweepFolder& folder, const SweepJob& job, const std::string& expected_hash,
+                 const std::string& binary, std::ostream& out) {
   ProcessPool pool;
   const int attempts = max_attempts(folder);
   for (int attempt = 1;; ++attempt) {
@@ -183,6 +134,32 @@ int run_sweep_task(const SweepFolder& folder, const std::string& list, std::size
         << (attempt == 1 ? "" : "s") << ": " << verdict.error << "\n";
     return 1;
   }
+}
+
+}  // namespace
+
+int run_sweep_task(const SweepFolder& folder, const std::string& list, std::size_t index, const std::string& binary,
+                   std::ostream& out) {
+  const auto [entry, found] = task_job(folder, list, index);
+  const SweepJob& job = *found;
+  if (!dependencies_done(folder, job, out)) return 1;
+  const SharedSweepLock lock(folder.dir, out);
+  if (!entry.force && job_is_done(folder, job)) {
+    out << "rapid sweep task: " << job.id() << " is already done\n";
+    return 0;
+  }
+  std::string expected_hash;
+  if (job.kind == JobKind::kCell) {
+    try {
+      expected_hash = expected_cell_hash(folder, job);
+    } catch (const std::exception& e) {
+      const AttemptVerdict verdict{"failed", false, e.what()};
+      record_outcome(folder, job, verdict, 0, -1, 0);
+      out << "rapid sweep task: failed " << job.id() << ": " << verdict.error << "\n";
+      return 1;
+    }
+  }
+  return run_attempts(folder, job, expected_hash, binary, out);
 }
 
 }  // namespace rapid
