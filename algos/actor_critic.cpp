@@ -43,7 +43,7 @@ const Mat& ActorCritic::critic_input(const Mat& obs, const Mat& act) {
 const RowVec& ActorCritic::critic_targets(const Batch& batch) {
   const Mat& next_action = actor_target_.forward(batch.next_obs);
   const Mat& next_q = critic_target_.forward(critic_input(batch.next_obs, next_action));
-  // Terminals (collisions) stop the bootstrap; time-limit truncations do not (SPEC §4).
+  // Terminals (collisions) stop the bootstrap; time-limit truncations do not (docs/design.md §Environments).
   y_ = batch.rew.array() + config_.gamma * batch.not_terminal.array() * next_q.row(0).array();
   return y_;
 }

@@ -1,4 +1,4 @@
-// The common part of the three SUMO driving scenarios (SPEC §4): one agent-controlled ego among
+// The common part of the three SUMO driving scenarios (docs/scenarios.md): one agent-controlled ego among
 // SUMO-driven humans. Scenarios derive from DrivingEnv and supply their network, where the ego
 // enters, what else to put on the road, and their own observation features.
 //

@@ -1,5 +1,5 @@
 // `rapid bench`, part 1: the environment's decision step against SUMO's own stepping of the same
-// network and traffic (issue 3's speed criterion: one decision ≤ 1.25 × the raw SUMO steps it
+// network and traffic (the target of docs/performance.md: one decision ≤ 1.25 × the raw SUMO steps it
 // spans).
 #pragma once
 

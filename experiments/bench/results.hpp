@@ -14,7 +14,7 @@
 
 namespace rapid::bench {
 
-// The limits of SPEC §10 / issue 9 the ratios are read against (reported, never asserted).
+// The limits of docs/performance.md the ratios are read against (reported, never asserted).
 inline constexpr double kEnvOverheadMax = 1.25;
 inline constexpr double kGemmRatioMin = 0.5;
 inline constexpr double kEndToEndMin = 0.85;

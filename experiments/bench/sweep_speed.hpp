@@ -1,5 +1,5 @@
 // `rapid bench`, part 4: sweep throughput, N worker processes against one, on a small pendulum
-// grid run by `rapid sweep` itself (SPEC §10: N workers should do N times the work of one).
+// grid run by `rapid sweep` itself (docs/performance.md: N workers should do N times the work of one).
 #pragma once
 
 #include <string>

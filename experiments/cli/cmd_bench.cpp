@@ -1,4 +1,4 @@
-// `rapid bench`: the speed budget of SPEC §10 / issue 9, measured in one run and reported as
+// `rapid bench`: the speed budget of docs/performance.md, measured in one run and reported as
 // ratios (env vs raw SUMO, update vs GEMM, end-to-end vs predicted, N sweep workers vs one).
 // A benchmark, never a test: the numbers are printed and written, nothing is asserted.
 #include <iostream>
@@ -113,7 +113,7 @@ int run_bench(const BenchOptions& o) {
 Command add_bench_command(CLI::App& parent) {
   auto opts = std::make_shared<BenchOptions>();
   CLI::App* sub = parent.add_subcommand(
-      "bench", "Measure env, update, end-to-end and sweep speed against their limits (SPEC §10)");
+      "bench", "Measure env, update, end-to-end and sweep speed against their limits");
   sub->add_option("--scenario", opts->scenario, "one scenario (default: lane-drop, cut-in and merge)");
   sub->add_option("--json", opts->json_file, "also write the results as one JSON object to FILE");
   sub->add_option("--train-algo", opts->train_algo, "algorithm of the end-to-end training run: " + names_or(algo_names()))

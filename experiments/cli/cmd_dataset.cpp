@@ -1,4 +1,4 @@
-// `rapid dataset`: prior datasets (SPEC §6). Each action is a sub-subcommand registered in
+// `rapid dataset`: prior datasets (docs/datasets.md). Each action is a sub-subcommand registered in
 // add_dataset_command below; `info` prints what a D4RL-layout file holds.
 #include <algorithm>
 #include <cmath>
@@ -155,7 +155,7 @@ Command add_build(CLI::App& dataset) {
 }  // namespace
 
 Command add_dataset_command(CLI::App& parent) {
-  CLI::App* sub = parent.add_subcommand("dataset", "Prior datasets in D4RL-layout HDF5 (SPEC §6)");
+  CLI::App* sub = parent.add_subcommand("dataset", "Prior datasets in D4RL-layout HDF5");
   sub->require_subcommand(1);
   // One entry per action; the one that was given runs.
   auto actions = std::make_shared<std::vector<Command>>(std::vector<Command>{

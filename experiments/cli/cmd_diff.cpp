@@ -1,5 +1,5 @@
 // `rapid diff SWEEP_DIR BASELINE.json [--rtol X] [--stat]`: compare a sweep with a stored
-// baseline cell by cell (SPEC §9); `--write-baseline` (re)writes BASELINE.json from the sweep.
+// baseline cell by cell (docs/reports.md §Baselines and `rapid diff`); `--write-baseline` (re)writes BASELINE.json from the sweep.
 #include <filesystem>
 #include <iomanip>
 #include <iostream>

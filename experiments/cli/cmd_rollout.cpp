@@ -1,5 +1,5 @@
 // `rapid rollout`: run a fixed policy in a scenario and report each episode's return, length
-// and collision (SPEC §3).
+// and collision (README, "The `rapid` command").
 #include <filesystem>
 #include <iostream>
 #include <memory>

@@ -1,4 +1,4 @@
-// `rapid run`: train one job (one seed of one table cell) and write its run record (SPEC §3, §8).
+// `rapid run`: train one job (one seed of one table cell) and write its run record (docs/design.md §Jobs, §Records).
 #include <filesystem>
 
 #include "algos/registry.hpp"

@@ -1,5 +1,5 @@
 // `rapid status SWEEP_DIR`: counts of jobs by state and the failed ones with their errors, from
-// the folder's files alone (SPEC §3).
+// the folder's files alone (docs/sweeps.md §Check on a sweep).
 #include <iomanip>
 #include <iostream>
 

@@ -1,5 +1,5 @@
 // `rapid summarize SWEEP_DIR`: Table I (table.md, table.tex, table.csv), summary.json and
-// claims.md from a sweep's run records, then Figures 2–3 through scripts/plot (SPEC §9).
+// claims.md from a sweep's run records, then Figures 2–3 through scripts/plot (docs/reports.md).
 #include <filesystem>
 #include <iostream>
 

@@ -1,5 +1,5 @@
 // `rapid sweep GRID`: run a grid's job graph into a sweep folder, resuming whatever is done
-// (SPEC §3, §7, §8, §11). Validation happens first and writes nothing; then the folder is locked,
+// (docs/sweeps.md, docs/design.md §Sweeps). Validation happens first and writes nothing; then the folder is locked,
 // its grid.json updated, and the backend runs the jobs.
 #include <unistd.h>
 

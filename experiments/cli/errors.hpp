@@ -1,4 +1,4 @@
-// The command line's error contract (SPEC §3): bad input exits 2 with one line naming the
+// The command line's error contract (docs/design.md §Command line): bad input exits 2 with one line naming the
 // offending field or value; a run that fails exits 1.
 #pragma once
 

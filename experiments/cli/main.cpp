@@ -1,4 +1,4 @@
-// `rapid`: the harness's one command line. See SPEC §3 and the README.
+// `rapid`: the harness's one command line. See docs/design.md §Command line and the README.
 #include <iostream>
 #include <vector>
 

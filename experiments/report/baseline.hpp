@@ -1,4 +1,4 @@
-// Baselines for `rapid diff` (SPEC §9): the per-cell numbers of a sweep, stored so CI can check a
+// Baselines for `rapid diff` (docs/reports.md §Baselines and `rapid diff`): the per-cell numbers of a sweep, stored so CI can check a
 // fresh sweep against them.
 //
 // Schema "rapid.baseline/1":

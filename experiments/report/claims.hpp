@@ -1,4 +1,4 @@
-// The paper's claims (SPEC §9, C1–C6) checked against a sweep's summary. Each check says PASS or
+// The paper's claims (C1–C6, docs/reports.md §claims.md) checked against a sweep's summary. Each check says PASS or
 // FAIL with the numbers behind it, or N/A when the grid lacks what the claim is about (an
 // algorithm, a dataset, the merge scenario). A cell the grid has but whose seeds all failed or
 // are missing counts against the claim: no data is not evidence for it.

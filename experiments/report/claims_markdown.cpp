@@ -27,7 +27,7 @@ std::string markdown_table(const ClaimResult& c) {
 std::string claims_markdown(const Summary& s) {
   std::ostringstream out;
   out << "# Claims check — grid `" << s.grid.name << "`\n\n"
-      << "Each claim of the paper (SPEC §9) checked against this sweep's ok runs. Values are means over seeds of the "
+      << "Each claim of the paper (docs/reports.md §claims.md) checked against this sweep's ok runs. Values are means over seeds of the "
          "final return (or of a curve). PASS/FAIL is decided by the definition printed under each claim; N/A means the "
          "grid does not contain what the claim is about. A row whose cells have no ok seed counts against the claim. "
          "With few seeds a verdict is weak evidence: look at the intervals in summary.json and table.md.\n\n"

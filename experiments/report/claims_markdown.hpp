@@ -1,4 +1,4 @@
-// claims.md: the paper's claims C1–C6 (SPEC §9) with their verdicts, the exact definitions
+// claims.md: the paper's claims C1–C6 (docs/reports.md §claims.md) with their verdicts, the exact definitions
 // checked and the numbers behind each verdict.
 #pragma once
 

@@ -1,5 +1,5 @@
 // Running scripts/plot (matplotlib, Figures 2 and 3) after `rapid summarize`. Plots are drawn by
-// Debian's /usr/bin/python3 (SPEC §2: not a pyenv shim); RAPID_PYTHON overrides the interpreter.
+// Debian's /usr/bin/python3 (not a pyenv shim, whose python may lack matplotlib); RAPID_PYTHON overrides the interpreter.
 #pragma once
 
 #include <filesystem>

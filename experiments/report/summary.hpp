@@ -1,4 +1,4 @@
-// The summary of a sweep (SPEC §9): every table cell's per-seed results read from the run records,
+// The summary of a sweep (docs/reports.md): every table cell's per-seed results read from the run records,
 // the statistics over seeds, the curves behind Figures 2 and 3(b), the prior datasets' statistics
 // behind Figure 3(a), and the claims check. Everything the reports, `rapid diff` and scripts/plot
 // need, so none of them reads records on its own.

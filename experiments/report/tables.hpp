@@ -1,4 +1,4 @@
-// Table I as Markdown, LaTeX (booktabs) and CSV (SPEC §9). Rows are scenario × dataset, columns
+// Table I as Markdown, LaTeX (booktabs) and CSV (docs/reports.md). Rows are scenario × dataset, columns
 // the grid's algorithms in the paper's order, a cell is "mean ± std" over the ok seeds of the
 // final return. A cell short of seeds says so ("112.3 ± 4.1 (n=2/3)"); one with no ok seed shows
 // "—" and its count. The best mean of each row is bold (Markdown) or shaded cyan (LaTeX).

@@ -1,4 +1,4 @@
-// Building a scenario's prior datasets (SPEC §6, paper IV-A-2): train a reference DDPG agent with
+// Building a scenario's prior datasets (docs/datasets.md, paper IV-A-2): train a reference DDPG agent with
 // its own seed for the grid's full budget, keep its actor at 1/10, 1/2 and the end, and roll each
 // checkpoint out with exploration noise into `initial`, `medium` and `final`; `final+medium` is
 // half of each.

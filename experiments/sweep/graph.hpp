@@ -1,4 +1,4 @@
-// The job graph of a sweep: reference agents → datasets → table cells (SPEC §7). A plain list of
+// The job graph of a sweep: reference agents → datasets → table cells (docs/design.md §Sweeps). A plain list of
 // jobs with dependency indices, independent of how the jobs are run: the local process pool runs
 // it here, a cluster backend can submit one array per stage and run job i by its index.
 //

@@ -1,4 +1,4 @@
-// A sweep's grid file (SPEC §7): which table cells to run (scenarios × datasets × algorithms ×
+// A sweep's grid file (docs/sweeps.md §Grid files): which table cells to run (scenarios × datasets × algorithms ×
 // seeds), the config overrides they share, and how the reference agents behind the prior datasets
 // are trained. Loading validates everything strictly, so a typo fails before anything is written.
 //

@@ -1,4 +1,4 @@
-// The Slurm backend of `rapid sweep` (SPEC §3, docs/cluster.md): instead of running the job graph
+// The Slurm backend of `rapid sweep` (docs/cluster.md): instead of running the job graph
 // here, submit job arrays and return at once: per scenario, one array per stage — reference
 // agent, datasets, the cells that need those datasets — each waiting for the one before with
 // --dependency=afterok, and one array of the cells that wait for nothing (DDPG, or prior cells
@@ -33,7 +33,7 @@ namespace rapid {
 struct SlurmOptions {
   std::string partition;  // empty: the cluster's default partition
   std::string time;       // empty: the partition's default limit
-  int cpus_per_task = 1;  // jobs are single-threaded (SPEC §10)
+  int cpus_per_task = 1;  // jobs are single-threaded (docs/design.md §Performance rules)
   int array_parallelism = 32;  // the %K throttle: at most K tasks of an array run at once
   std::vector<std::string> sbatch_args;  // more #SBATCH lines, e.g. --mem=4G, --account=X
   std::string binary;     // the rapid executable the tasks run (must be visible on the nodes)

@@ -1,4 +1,4 @@
-// What the files of a sweep folder say about each job: whether it is done (SPEC §8: its record
+// What the files of a sweep folder say about each job: whether it is done (docs/design.md §Sweeps: its record
 // says ok and its config hash matches what the grid asks for now), and what the runner noted
 // about its last attempt. Read from files only, so the local runner, `rapid status` and a
 // cluster backend all agree.
@@ -56,7 +56,7 @@ std::optional<Outcome> read_outcome(const SweepFolder& folder, const SweepJob& j
 // Parses a JSON file; nullopt if it is missing or not valid JSON (a corrupt record is not done).
 std::optional<nlohmann::json> read_json_file(const std::filesystem::path& path);
 
-// SPEC §8's "done": a cell's record is ok with the expected hash; a reference/dataset job's
+// "Done" (docs/design.md §Sweeps): a cell's record is ok with the expected hash; a reference/dataset job's
 // marker is ok and its outcome says it ran for the grid's current inputs.
 bool job_is_done(const SweepFolder& folder, const SweepJob& job);
 

@@ -1,5 +1,5 @@
 // `rapid sweep` and `rapid status` refuse bad input with exit 2, one line naming the field, and
-// nothing written (SPEC §3, §11).
+// nothing written (docs/design.md §Command line).
 #include <gtest/gtest.h>
 
 #include <algorithm>
