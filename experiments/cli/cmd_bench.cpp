@@ -51,18 +51,10 @@ BenchPlan make_plan(bool quick) {
 int run_bench(const BenchOptions& o) {
   std::vector<std::string> scenarios = {"lane-drop", "cut-in", "merge"};
   if (!o.scenario.empty()) {
-    try {
-      make_env(o.scenario);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("--scenario: ") + e.what());
-    }
+    check_option("--scenario", [&] { make_env(o.scenario); });
     scenarios = {o.scenario};
   }
-  try {
-    find_algorithm(o.train_algo);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--train-algo: ") + e.what());
-  }
+  check_option("--train-algo", [&] { find_algorithm(o.train_algo); });
   const BenchPlan plan = make_plan(o.quick);
   const auto t_start = Clock::now();
   bench::BenchReport report;

@@ -114,11 +114,7 @@ struct BuildOptions {
 
 int run_build(const BuildOptions& o) {
   DatasetBuildSpec spec;
-  try {
-    make_env(o.scenario);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--scenario: ") + e.what());
-  }
+  check_option("--scenario", [&] { make_env(o.scenario); });
   spec.scenario = o.scenario;
   spec.dir = o.dir;
   spec.reference_only = o.reference_only;

@@ -55,12 +55,7 @@ int diff_command(const DiffCliOptions& o) {
   SummaryOptions summary_options;
   summary_options.dataset_stats = false;
   summary_options.claims = false;
-  Summary summary;
-  try {
-    summary = build_summary(o.dir, summary_options);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("SWEEP_DIR: ") + e.what());
-  }
+  const Summary summary = check_option("SWEEP_DIR", [&] { return build_summary(o.dir, summary_options); });
 
   if (o.write) {
     const fs::path parent = fs::absolute(o.baseline).parent_path();

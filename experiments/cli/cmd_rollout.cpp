@@ -31,12 +31,7 @@ struct EpisodeSummary {
 };
 
 int run_rollout(const RolloutOptions& o) {
-  std::unique_ptr<Env> env;
-  try {
-    env = make_env(o.scenario);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--scenario: ") + e.what());
-  }
+  std::unique_ptr<Env> env = check_option("--scenario", [&] { return make_env(o.scenario); });
   Mlp actor;
   const bool fixed = o.policy == "random" || o.policy == "zero" || o.policy == "sumo";
   if (!fixed) {
@@ -53,11 +48,7 @@ int run_rollout(const RolloutOptions& o) {
                        std::to_string(env->obs_dim()) + " → " + std::to_string(env->act_dim()));
   }
   if (o.policy == "sumo") {
-    try {
-      env->set_builtin_driver(true);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("--policy sumo: ") + e.what());
-    }
+    check_option("--policy sumo", [&] { env->set_builtin_driver(true); });
   }
 
   Rng action_rng(stream_seed(o.seed, Stream::kExploration));

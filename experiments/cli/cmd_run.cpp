@@ -31,30 +31,14 @@ std::string resolve_dataset_path(const RunOptions& o) {
 
 // The grid's overrides for this scenario, validated like `rapid sweep` validates the grid.
 nlohmann::json overrides_from_grid(const std::string& grid_path, const std::string& scenario) {
-  try {
-    return grid_overrides(load_grid(grid_path), scenario);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--grid: ") + e.what());
-  }
+  return check_option("--grid", [&] { return grid_overrides(load_grid(grid_path), scenario); });
 }
 
 int run_command(const RunOptions& o) {
   JobSpec spec;
-  try {
-    make_env(o.scenario);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--scenario: ") + e.what());
-  }
-  try {
-    find_algorithm(o.algo);  // throws, naming the known ones, for an unknown algorithm
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--algo: ") + e.what());
-  }
-  try {
-    check_dataset_fits(o.algo, !o.dataset.empty());
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--dataset: ") + e.what());
-  }
+  check_option("--scenario", [&] { make_env(o.scenario); });
+  check_option("--algo", [&] { find_algorithm(o.algo); });
+  check_option("--dataset", [&] { check_dataset_fits(o.algo, !o.dataset.empty()); });
   spec.scenario = o.scenario;
   spec.algo = o.algo;
   spec.seed = o.seed;

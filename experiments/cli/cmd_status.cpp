@@ -41,12 +41,7 @@ void print_status(const SweepFolder& folder, const SweepStatus& s) {
 }
 
 int status_command(const StatusOptions& o) {
-  SweepFolder folder;
-  try {
-    folder = open_sweep_folder(o.dir);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("SWEEP_DIR: ") + e.what());
-  }
+  const SweepFolder folder = check_option("SWEEP_DIR", [&] { return open_sweep_folder(o.dir); });
   const SweepStatus status = inspect_sweep(folder);
   if (o.json) std::cout << status_json(folder, status).dump(1) << "\n";
   else print_status(folder, status);

@@ -23,12 +23,7 @@ struct SummarizeOptions {
 }  // namespace
 
 int summarize_sweep(const std::string& sweep_dir, const std::string& out_dir, bool plots) {
-  Summary summary;
-  try {
-    summary = build_summary(sweep_dir);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("SWEEP_DIR: ") + e.what());
-  }
+  const Summary summary = check_option("SWEEP_DIR", [&] { return build_summary(sweep_dir); });
   const fs::path out = out_dir.empty() ? fs::path(sweep_dir) : fs::path(out_dir);
   std::error_code ec;
   fs::create_directories(out, ec);

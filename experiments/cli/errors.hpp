@@ -1,5 +1,5 @@
-// The command line's error contract (docs/design.md §Command line): bad input exits 2 with one line naming the
-// offending field or value; a run that fails exits 1.
+// The command line's error contract (docs/design.md §Command line): bad input exits 2 with one
+// line naming the offending field or value; a run that fails exits 1.
 #pragma once
 
 #include <stdexcept>
@@ -13,6 +13,17 @@ class UsageError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// Runs `check` and returns what it returns; the std::invalid_argument it may throw (a registry's
+// "unknown scenario …", a bad config key) becomes a UsageError that names `option` first.
+template <typename Check>
+auto check_option(const std::string& option, Check&& check) -> decltype(check()) {
+  try {
+    return check();
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(option + ": " + e.what());
+  }
+}
 
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailed = 1;
