@@ -11,7 +11,7 @@
 
 #include <string>
 
-#include "experiments/run/run_config.hpp"
+#include "experiments/run/config_keys.hpp"
 
 namespace rapid::bench {
 

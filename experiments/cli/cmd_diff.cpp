@@ -8,7 +8,7 @@
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
 #include "experiments/report/baseline.hpp"
-#include "experiments/report/summary.hpp"
+#include "experiments/report/summarize.hpp"
 
 namespace rapid {
 

@@ -9,6 +9,7 @@
 #include "experiments/run/dataset_build.hpp"
 #include "experiments/run/job.hpp"
 #include "experiments/run/run_config.hpp"
+#include "experiments/run/run_job.hpp"
 #include "experiments/sweep/grid.hpp"
 
 namespace rapid {

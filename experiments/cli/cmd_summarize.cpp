@@ -5,7 +5,7 @@
 
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
-#include "experiments/report/summary.hpp"
+#include "experiments/report/summarize.hpp"
 #include "experiments/report/write_reports.hpp"
 
 namespace rapid {

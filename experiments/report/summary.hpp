@@ -1,7 +1,8 @@
-// The summary of a sweep (docs/reports.md): every table cell's per-seed results read from the run records,
-// the statistics over seeds, the curves behind Figures 2 and 3(b), the prior datasets' statistics
-// behind Figure 3(a), and the claims check. Everything the reports, `rapid diff` and scripts/plot
-// need, so none of them reads records on its own.
+// The summary of a sweep (docs/reports.md), as summarize.hpp reads it from the sweep folder: every
+// table cell's per-seed results from the run records, the statistics over seeds, the curves behind
+// Figures 2 and 3(b), the prior datasets' statistics behind Figure 3(a), and the claims check.
+// Everything the reports, `rapid diff` and scripts/plot need, so none of them reads records on its
+// own.
 //
 // Cells are keyed as the job graph has them: (scenario, dataset, algo) with an empty dataset for
 // ddpg, whose one cell per scenario appears in every dataset row of the table (as in the paper).
@@ -117,16 +118,6 @@ struct Summary {
   // The cell shown in a row's column: the dataset's cell, or the scenario's ddpg cell.
   const CellSummary* column_cell(const TableRow& row, const std::string& algo) const;
 };
-
-struct SummaryOptions {
-  bool dataset_stats = true;  // read the prior datasets (Figure 3(a)); `rapid diff` skips it
-  bool claims = true;
-  BootstrapSettings bootstrap;
-};
-
-// Reads the sweep folder's grid and every cell's record. Throws std::invalid_argument (one line)
-// if DIR is not a sweep folder; a missing or broken record is a status, not an error.
-Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptions& options = {});
 
 // summary.json ("rapid.summary/1", see docs/reports.md).
 nlohmann::json summary_to_json(const Summary& summary);

@@ -4,7 +4,6 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "experiments/run/run_config.hpp"
 
 namespace rapid {
 

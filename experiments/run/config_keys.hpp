@@ -1,8 +1,8 @@
-// The keys of a run's config, one row each: the one place that says which keys exist, which part
-// of a run each configures, the field it fills, the values it accepts and what it means. Parsing,
-// validation, grid overrides and `--set` (run_config.hpp) read this table, and the key table of
-// docs/algorithms.md is generated from it (tests/test_configs.cpp fails when they differ). The
-// values runs use live in the scenario's file, experiments/configs/<scenario>.json.
+// A run's config, RunConfig, and its keys, one row each: the one place that says which keys
+// exist, which part of a run each configures, the field it fills, the values it accepts and what
+// it means. Parsing, validation, grid overrides and `--set` (run_config.hpp) read this table, and
+// the key table of docs/algorithms.md is generated from it (tests/test_configs.cpp fails when they
+// differ). The values runs use live in the scenario's file, experiments/configs/<scenario>.json.
 #pragma once
 
 #include <functional>
@@ -11,9 +11,23 @@
 #include <string>
 #include <vector>
 
+#include "algos/agent_config.hpp"
+
 namespace rapid {
 
-struct RunConfig;
+// The fully resolved configuration of one training job: the agent's hyper-parameters plus the
+// training schedule. No defaults: every field comes from the scenario's config file through its
+// key below.
+struct RunConfig {
+  AgentConfig agent;
+  long steps{};
+  long warmup_steps{};
+  long eval_every{};
+  int eval_episodes{};
+  int last_k{};
+  long bc_log_every{};
+  long buffer_capacity{};
+};
 
 // The part of a run a key configures; it follows from the struct that holds the key's field.
 enum class ConfigPart {

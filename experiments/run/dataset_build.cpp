@@ -17,6 +17,7 @@
 #include "experiments/run/job.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/run/run_config.hpp"
+#include "experiments/run/run_job.hpp"
 
 namespace rapid {
 

@@ -1,5 +1,6 @@
-// One training job: a table cell (scenario, dataset, algorithm, seed) with its resolved config.
-// run_job trains it and writes its run record (record.hpp) atomically into the job folder.
+// One training job: a table cell (scenario, dataset, algorithm, seed) with its resolved config,
+// what makes a finished one still valid (its hash) and the files it leaves in its folder.
+// run_job.hpp runs it; record.hpp is what it writes.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -35,21 +36,10 @@ void check_dataset_fits(const std::string& algo, bool has_dataset);
 // config and the dataset file's content. Code revision is deliberately not part of it.
 std::string job_config_hash(const JobSpec& spec);
 
-// Resolves the config of a cell: the scenario's defaults, then the grid's overrides (if
-// `grid_overrides` is an object), then `--set` overrides. Throws std::invalid_argument naming the
-// offending key.
-nlohmann::json resolve_config(const std::string& scenario, const nlohmann::json& grid_overrides,
-                              const nlohmann::json& set_overrides);
-
 // dir/progress.json: how far a running job is (`rapid status` and the live sweep display read it).
 void write_progress(const std::string& dir, long step, long steps, double steps_per_s);
 
 // Where a job keeps the extra actor checkpoint taken after `step` training steps.
 std::string checkpoint_file(const std::string& dir, long step);
-
-// Trains the job and writes out_dir/record.json (status ok, diverged or failed) plus
-// out_dir/actor.ckpt and out_dir/progress.json. Returns 0 when the record says ok, 1 otherwise.
-// Throws (writing nothing) only for problems with the spec itself.
-int run_job(const JobSpec& spec);
 
 }  // namespace rapid

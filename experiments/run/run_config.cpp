@@ -61,6 +61,15 @@ void parse_set_option(const std::string& assignment, nlohmann::json& overrides) 
   overrides[key] = value;
 }
 
+nlohmann::json resolve_config(const std::string& scenario, const nlohmann::json& grid_overrides,
+                              const nlohmann::json& set_overrides) {
+  nlohmann::json config = default_config_json(scenario);
+  if (grid_overrides.is_object()) apply_overrides(config, grid_overrides, scenario, "grid");
+  if (set_overrides.is_object()) apply_overrides(config, set_overrides, scenario, "--set");
+  run_config_from_json(config, scenario);  // validates the whole
+  return config;
+}
+
 RunConfig run_config_from_json(const nlohmann::json& j, const std::string& scenario,
                                const std::vector<ConfigKey>& keys) {
   if (!j.is_object()) throw std::invalid_argument("config must be a JSON object");

@@ -1,29 +1,16 @@
-// The fully resolved configuration of one training job: the agent's hyper-parameters plus the
-// training schedule. Its keys are the rows of config_keys.hpp. Values live in one JSON file per
-// scenario (experiments/configs/<scenario>.json); a grid may override keys, and `rapid run --set
-// key=value` overrides last. The resolved config is recorded in the run record and hashed.
+// Resolving a run's config (RunConfig, config_keys.hpp): the scenario's file
+// (experiments/configs/<scenario>.json), then a grid's overrides, then `rapid run --set
+// key=value`, each checked key by key against the key table. The resolved config is recorded in
+// the run record and hashed.
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include "algos/agent_config.hpp"
 #include "experiments/run/config_keys.hpp"
 
 namespace rapid {
-
-// No defaults: every field comes from the scenario's config file through its config key.
-struct RunConfig {
-  AgentConfig agent;
-  long steps{};
-  long warmup_steps{};
-  long eval_every{};
-  int eval_episodes{};
-  int last_k{};
-  long bc_log_every{};
-  long buffer_capacity{};
-};
 
 // The folder with the per-scenario config files; RAPID_CONFIG_DIR overrides the built-in path.
 std::string config_dir();
@@ -39,6 +26,12 @@ void apply_overrides(nlohmann::json& config, const nlohmann::json& overrides, co
 
 // Parses "key=value" (value as JSON, else as a plain string) into `overrides`.
 void parse_set_option(const std::string& assignment, nlohmann::json& overrides);
+
+// The config of a cell: the scenario's file, then the grid's overrides (if `grid_overrides` is an
+// object), then `--set` overrides, validated as a whole. Throws std::invalid_argument naming the
+// offending key.
+nlohmann::json resolve_config(const std::string& scenario, const nlohmann::json& grid_overrides,
+                              const nlohmann::json& set_overrides);
 
 // Converts a config of `scenario`: it must have every key of that scenario and no other, each
 // with a valid value. Throws std::invalid_argument naming the key.

@@ -8,7 +8,7 @@
 
 #include "algos/actor_critic.hpp"
 #include "envs/env.hpp"
-#include "experiments/run/run_config.hpp"
+#include "experiments/run/config_keys.hpp"
 
 namespace rapid {
 

@@ -6,8 +6,8 @@
 #include <ctime>
 
 #include "core/clock.hpp"
-#include "experiments/run/job.hpp"
 #include "experiments/run/provenance.hpp"
+#include "experiments/run/run_config.hpp"
 #include "experiments/sweep/attempt.hpp"
 #include "experiments/sweep/process_pool.hpp"
 #include "experiments/sweep/progress.hpp"

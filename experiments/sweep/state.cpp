@@ -7,6 +7,7 @@
 #include "core/hash.hpp"
 #include "experiments/run/job.hpp"
 #include "experiments/run/provenance.hpp"
+#include "experiments/run/run_config.hpp"
 
 namespace rapid {
 

@@ -5,7 +5,7 @@
 #include <map>
 
 #include "experiments/report/claims_markdown.hpp"
-#include "experiments/report/summary.hpp"
+#include "experiments/report/summarize.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
 #include "tests/reports/report_test_util.hpp"
 

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "core/statistics.hpp"
-#include "experiments/report/summary.hpp"
+#include "experiments/report/summarize.hpp"
 #include "experiments/report/tables.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
 #include "tests/reports/report_test_util.hpp"
