@@ -10,6 +10,17 @@ namespace rapid {
 namespace {
 std::string scenario_dir(const std::string& scenario) { return std::string(sweep_files::kJobs) + "/" + scenario; }
 DatasetFolder datasets_of(const std::string& scenario) { return DatasetFolder(sweep_files::kDatasets, scenario); }
+
+// Where the job's own command writes: a cell's job folder, the reference agent's job folder in
+// the dataset folder, or the dataset folder itself for the dataset build.
+std::string output_dir(const SweepJob& job) {
+  switch (job.kind) {
+    case JobKind::kReference: return datasets_of(job.scenario).reference();
+    case JobKind::kDatasets: return datasets_of(job.scenario).dir;
+    case JobKind::kCell: break;
+  }
+  return job.dir;
+}
 }  // namespace
 
 std::string SweepJob::id() const {
@@ -88,22 +99,11 @@ std::vector<std::string> job_arguments(const SweepJob& job) {
 }
 
 std::string job_marker_path(const SweepJob& job) {
-  switch (job.kind) {
-    case JobKind::kReference: return datasets_of(job.scenario).reference() + "/" + job_files::kRecord;
-    case JobKind::kDatasets: return datasets_of(job.scenario).done_marker();
-    case JobKind::kCell: break;
-  }
-  return job.dir + "/" + job_files::kRecord;
+  if (job.kind == JobKind::kDatasets) return datasets_of(job.scenario).done_marker();
+  return output_dir(job) + "/" + job_files::kRecord;
 }
 
-std::string job_progress_path(const SweepJob& job) {
-  switch (job.kind) {
-    case JobKind::kReference: return datasets_of(job.scenario).reference() + "/" + job_files::kProgress;
-    case JobKind::kDatasets: return datasets_of(job.scenario).progress();
-    case JobKind::kCell: break;
-  }
-  return job.dir + "/" + job_files::kProgress;
-}
+std::string job_progress_path(const SweepJob& job) { return output_dir(job) + "/" + job_files::kProgress; }
 
 std::string cell_dataset_path(const SweepJob& job) {
   if (job.kind != JobKind::kCell || job.dataset.empty()) return "";
