@@ -1,4 +1,4 @@
-// The common part of the three SUMO driving scenarios (SPEC §4): one agent-controlled ego among
+// The common part of the three SUMO driving scenarios (docs/scenarios.md): one agent-controlled ego among
 // SUMO-driven humans. Scenarios derive from DrivingEnv and supply their network, where the ego
 // enters, what else to put on the road, and their own observation features.
 //
@@ -37,15 +37,16 @@ struct DrivingConfig {
   int horizon = 150;               // decisions per episode
   int action_repeat = 5;           // SUMO steps per decision
   double step_length = 0.1;        // s
-  int warmup_steps = 250;          // SUMO steps of traffic before the ego enters (+ up to warmup_jitter)
-  int warmup_jitter = 50;
+  // SUMO steps of traffic before the ego enters, plus a random 0..traffic_warmup_jitter more.
+  // (Not the run config's warmup_steps, which are random-action decisions before learning.)
+  int traffic_warmup_steps = 250;
+  int traffic_warmup_jitter = 50;
   double sensing_range = 100.0;    // R (m): vehicles farther away read as missing
   double lane_end_range = 200.0;   // R_end (m) of the "lane continues ahead" entries
   double speed_norm = 35.0;        // v_norm (m/s): also the ego's top speed under agent control
   double rel_speed_norm = 15.0;    // m/s
   double max_accel = 4.0;          // m/s² at |a0| = 1
   int lane_change_interval = 4;    // decisions between two lane changes
-  float epsilon = 0.0f;            // the documented default ε
   int extra_features = 0;          // scenario features appended to the observation
   driving::RewardWeights weights;
 };
@@ -61,7 +62,6 @@ class DrivingEnv : public Env {
   int obs_dim() const override { return kCommonObs + config_.extra_features; }
   int act_dim() const override { return 2; }
   int horizon() const override { return config_.horizon; }
-  float default_epsilon() const override { return config_.epsilon; }
   void reset(std::uint64_t seed, VecRef obs) override;
   StepResult step(const ConstVecRef& action, VecRef obs) override;
   void set_builtin_driver(bool on) override { builtin_ = on; }
