@@ -43,7 +43,7 @@ const Mat& ActorCritic::critic_input(const Mat& obs, const Mat& act) {
 const RowVec& ActorCritic::critic_targets(const Batch& batch) {
   const Mat& next_action = actor_target_.forward(batch.next_obs);
   const Mat& next_q = critic_target_.forward(critic_input(batch.next_obs, next_action));
-  // Terminals (collisions) stop the bootstrap; time-limit truncations do not (SPEC §4).
+  // Terminals (collisions) stop the bootstrap; time-limit truncations do not (docs/design.md §Environments).
   y_ = batch.rew.array() + config_.gamma * batch.not_terminal.array() * next_q.row(0).array();
   return y_;
 }
@@ -70,18 +70,20 @@ float ActorCritic::actor_objective(const Batch& batch, UpdateStats& stats) {
   return stats.actor_loss;
 }
 
-float ActorCritic::actor_loss(const Batch& batch) {
-  UpdateStats stats;
+float ActorCritic::actor_gradient(const Batch& batch, UpdateStats& stats) {
   const float loss = actor_objective(batch, stats);
   actor_.zero_grad();
   actor_.backward(dpi_, Grads::kParamsOnly);
   return loss;
 }
 
+float ActorCritic::compute_actor_gradient(const Batch& batch) {
+  UpdateStats stats;
+  return actor_gradient(batch, stats);
+}
+
 void ActorCritic::actor_step(const Batch& batch, UpdateStats& stats) {
-  actor_objective(batch, stats);
-  actor_.zero_grad();
-  actor_.backward(dpi_, Grads::kParamsOnly);
+  actor_gradient(batch, stats);
   actor_opt_.step(actor_.params(), actor_.grads());
   acting_actor_stale_ = true;
 }

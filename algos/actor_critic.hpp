@@ -2,15 +2,15 @@
 // deterministic tanh actor, critic Q(s, a) with LayerNorm after each hidden layer, target
 // networks with Polyak averaging, Adam.
 //
-// An algorithm is this class plus two answers (see the files beside this one):
-//   uses_prior()   whether half of every batch comes from the prior dataset,
+// An algorithm is this class plus two answers:
 //   bc_weights()   the per-sample weight w_i of the imitation term in the actor loss
-//                  L(φ) = −(1/B) Σ Q(s_i, π(s_i)) + (1/B) Σ w_i ‖π(s_i) − a_i‖².
-// The backbone (DDPG) answers "no" and "all zero".
+//                  L(φ) = −(1/B) Σ Q(s_i, π(s_i)) + (1/B) Σ w_i ‖π(s_i) − a_i‖²
+//                  (overridden in the files beside this one; the backbone's is all zero), and
+//   uses_prior     whether half of every batch comes from the prior dataset: its row in
+//                  algos/registry.cpp, since the trainer, not the agent, draws the batches.
 #pragma once
 
 #include <memory>
-#include <string>
 
 #include "algos/agent_config.hpp"
 #include "core/adam.hpp"
@@ -35,9 +35,6 @@ class ActorCritic {
   ActorCritic(int obs_dim, int act_dim, const AgentConfig& config, std::uint64_t init_seed);
   virtual ~ActorCritic() = default;
 
-  virtual std::string name() const { return "ddpg"; }
-  virtual bool uses_prior() const { return false; }
-
   // Deterministic action π(s) for one observation (no allocation after the first call).
   const Mat& act(const ConstVecRef& obs);
 
@@ -48,9 +45,9 @@ class ActorCritic {
   // The critic's target y = r + γ·(1 − terminal)·Q'(s', π'(s')); timeouts bootstrap.
   const RowVec& critic_targets(const Batch& batch);
 
-  // The actor loss (2) on `batch`, leaving dL/dφ in actor().grads(); changes no parameter.
-  // Exposed so tests can check the gradient against finite differences.
-  float actor_loss(const Batch& batch);
+  // Writes dL/dφ of the actor loss (2) on `batch` into actor().grads() and returns L(φ); changes
+  // no parameter. Exposed so tests can check the gradient against finite differences.
+  float compute_actor_gradient(const Batch& batch);
 
   bool parameters_finite() const;
   const AgentConfig& config() const { return config_; }
@@ -64,6 +61,8 @@ class ActorCritic {
  private:
   // Fills pi_ = π(s), dpi_ = dL/dπ(s) and the actor-side fields of `stats`; returns L(φ).
   float actor_objective(const Batch& batch, UpdateStats& stats);
+  // actor_objective, then back-propagates dpi_ into the actor's parameter gradients.
+  float actor_gradient(const Batch& batch, UpdateStats& stats);
   void actor_step(const Batch& batch, UpdateStats& stats);
   void critic_step(const Batch& batch, UpdateStats& stats);
   // Writes [s; a] into the critic's input buffer.

@@ -1,15 +1,14 @@
-// CoL-all: RLPD plus λ_BC times the mean imitation error over the whole batch, online half
+// CoL-all (on symmetric batches, algos/registry.cpp): the backbone plus λ_BC times the mean imitation error over the whole batch, online half
 // included (so it also imitates its own early, poor actions).
 #pragma once
 
-#include "algos/rlpd.hpp"
+#include "algos/actor_critic.hpp"
 
 namespace rapid {
 
-class ColAll : public Rlpd {
+class ColAll : public ActorCritic {
  public:
-  using Rlpd::Rlpd;
-  std::string name() const override { return "col-all"; }
+  using ActorCritic::ActorCritic;
 
  protected:
   void bc_weights(const Batch& batch, RowVec& w) const override {

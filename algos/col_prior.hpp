@@ -1,14 +1,13 @@
-// CoL-prior: RLPD plus λ_BC times the mean imitation error over the prior half of the batch.
+// CoL-prior (on symmetric batches, algos/registry.cpp): the backbone plus λ_BC times the mean imitation error over the prior half of the batch.
 #pragma once
 
-#include "algos/rlpd.hpp"
+#include "algos/actor_critic.hpp"
 
 namespace rapid {
 
-class ColPrior : public Rlpd {
+class ColPrior : public ActorCritic {
  public:
-  using Rlpd::Rlpd;
-  std::string name() const override { return "col-prior"; }
+  using ActorCritic::ActorCritic;
 
  protected:
   // (1/B) Σ w_i e_i = λ · mean over the prior columns of e_i  ⇔  w_i = λ·B/n_prior there, 0 else.

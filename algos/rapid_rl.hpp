@@ -1,16 +1,15 @@
-// RAPID-RL (paper eq. 2): RLPD plus a selective imitation term over the whole batch, each
+// RAPID-RL (paper eq. 2, on symmetric batches, algos/registry.cpp): the backbone plus a selective imitation term over the whole batch, each
 // transition weighted by relu(r − ε): actions whose reward beats the threshold ε are imitated in
 // proportion to the margin, the rest not at all.
 #pragma once
 
-#include "algos/rlpd.hpp"
+#include "algos/actor_critic.hpp"
 
 namespace rapid {
 
-class RapidRl : public Rlpd {
+class RapidRl : public ActorCritic {
  public:
-  using Rlpd::Rlpd;
-  std::string name() const override { return "rapid-rl"; }
+  using ActorCritic::ActorCritic;
 
  protected:
   void bc_weights(const Batch& batch, RowVec& w) const override {

@@ -1,6 +1,8 @@
-// The name → algorithm table behind `--algo`.
+// The algorithms, one row each. Every list of algorithm names, every help text and every report
+// reads this table, so adding an algorithm is one header (its imitation weights) and one row.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -9,11 +11,21 @@
 
 namespace rapid {
 
+struct Algorithm {
+  std::string name;          // --algo, grids, run records, report keys
+  std::string display_name;  // tables and figures, as the paper prints it
+  // Every batch is B/2 from the prior dataset and B/2 online (symmetric sampling), so a run needs
+  // a dataset; otherwise the whole batch is online and a run takes no dataset.
+  bool uses_prior = false;
+  std::unique_ptr<ActorCritic> (*make)(int obs_dim, int act_dim, const AgentConfig& config,
+                                       std::uint64_t init_seed) = nullptr;
+};
+
 // In the order of the paper's Table I columns.
-const std::vector<std::string>& algo_names();
-bool algo_uses_prior(const std::string& name);
+const std::vector<Algorithm>& algorithms();
+std::vector<std::string> algo_names();
+
 // Throws std::invalid_argument("unknown algorithm '…'; expected one of …").
-std::unique_ptr<ActorCritic> make_agent(const std::string& name, int obs_dim, int act_dim,
-                                        const AgentConfig& config, std::uint64_t init_seed);
+const Algorithm& find_algorithm(const std::string& name);
 
 }  // namespace rapid

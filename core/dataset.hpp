@@ -1,4 +1,4 @@
-// Prior datasets (SPEC §6): N transitions in the D4RL layout, held in memory.
+// Prior datasets (docs/datasets.md): N transitions in the D4RL layout, held in memory.
 //
 // The module is split by purpose:
 //   dataset.hpp        the Dataset type, building one transition by transition or from a replay
@@ -22,7 +22,7 @@ namespace rapid {
 // Free-form string attributes stored on the HDF5 root group.
 using Metadata = std::map<std::string, std::string>;
 
-// The metadata keys every dataset `rapid dataset build` writes carries (SPEC §6).
+// The metadata keys every dataset `rapid dataset build` writes carries (docs/design.md §Datasets).
 namespace meta {
 inline constexpr const char* kScenario = "scenario";
 inline constexpr const char* kSourceCheckpoint = "source_checkpoint";

@@ -1,4 +1,4 @@
-// Reading and writing datasets as D4RL-layout HDF5 files (SPEC §6, REFERENCES "Datasets").
+// Reading and writing datasets as D4RL-layout HDF5 files (docs/design.md §Datasets).
 //
 // Layout: flat datasets `observations` (N × obs_dim), `actions` (N × act_dim), `rewards` (N),
 // `next_observations` (N × obs_dim) as float32, and `terminals`, `timeouts` (N) as the bool type

@@ -1,4 +1,4 @@
-// Cutting and joining datasets, and the `final+medium` mixture of SPEC §6.
+// Cutting and joining datasets, and the `final+medium` mixture of docs/datasets.md.
 //
 // The mixture rule: from each source take whole episodes from its start, stopping at the first
 // episode boundary at or past half of its transitions (the shortest prefix of whole episodes

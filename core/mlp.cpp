@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/atomic_file.hpp"
+#include "core/hash.hpp"
 
 namespace rapid {
 
@@ -24,14 +25,6 @@ const char* kind_name(LayerKind k) {
   return "?";
 }
 
-std::uint64_t fnv1a(const char* data, std::size_t n) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (std::size_t i = 0; i < n; ++i) {
-    h ^= static_cast<unsigned char>(data[i]);
-    h *= 0x100000001b3ULL;
-  }
-  return h;
-}
 }  // namespace
 
 Mlp::Mlp(int input_dim, const std::vector<LayerSpec>& layers) : input_dim_(input_dim), specs_(layers) {
@@ -282,7 +275,7 @@ void Mlp::save(const std::string& path) const {
   }
   put(static_cast<std::int64_t>(params_.size()));
   buf.append(reinterpret_cast<const char*>(params_.data()), sizeof(float) * params_.size());
-  put(fnv1a(buf.data(), buf.size()));
+  put(fnv1a(buf));
   write_file_atomic(path, buf);
 }
 
@@ -323,7 +316,7 @@ Mlp Mlp::load(const std::string& path) {
   if (pos + bytes + sizeof(std::uint64_t) != buf.size()) fail("truncated or has trailing data");
   std::memcpy(net.params_.data(), buf.data() + pos, bytes);
   pos += bytes;
-  const std::uint64_t expected = fnv1a(buf.data(), pos);
+  const std::uint64_t expected = fnv1a(std::string_view(buf).substr(0, pos));
   std::uint64_t stored = 0;
   get(stored);
   if (stored != expected) fail("checksum mismatch (corrupt file)");

@@ -10,7 +10,6 @@ void Batch::resize(int obs_dim, int act_dim, int batch_size) {
   act.resize(act_dim, batch_size);
   rew.resize(batch_size);
   not_terminal.resize(batch_size);
-  timeout.resize(batch_size);
 }
 
 ReplayBuffer::ReplayBuffer(int obs_dim, int act_dim, std::size_t capacity)
@@ -44,12 +43,6 @@ void ReplayBuffer::copy_slot(Eigen::Index s, Batch& batch, int col) const {
   batch.next_obs.col(col) = next_obs_.col(s);
   batch.rew[col] = rew_[s];
   batch.not_terminal[col] = 1.0f - terminal_[s];
-  batch.timeout[col] = timeout_[s];
-}
-
-void ReplayBuffer::copy_into(std::size_t i, Batch& batch, int col) const {
-  if (i >= size_) throw std::out_of_range("ReplayBuffer::copy_into: index past the stored transitions");
-  copy_slot(slot(i), batch, col);
 }
 
 void ReplayBuffer::sample_into(Rng& rng, Batch& batch, int first, int count) const {

@@ -15,7 +15,6 @@ struct Batch {
   Mat obs, act, next_obs;
   RowVec rew;
   RowVec not_terminal;  // 1 − terminal: the critic target bootstraps through timeouts, not terminals
-  RowVec timeout;       // kept for diagnostics; never masks the target
   int prior_count = 0;
 
   void resize(int obs_dim, int act_dim, int batch_size);
@@ -34,8 +33,6 @@ class ReplayBuffer {
   // Fills columns [first, first + count) of `batch` with transitions drawn uniformly with
   // replacement. The buffer must not be empty.
   void sample_into(Rng& rng, Batch& batch, int first, int count) const;
-  // Copies transition i (0 = oldest still stored) into column `col` of `batch`.
-  void copy_into(std::size_t i, Batch& batch, int col) const;
 
   std::size_t size() const { return size_; }
   std::size_t capacity() const { return capacity_; }

@@ -1,4 +1,4 @@
-// Statistics of a table of results (SPEC §9, REFERENCES "Statistics (rliable)"): mean and spread
+// Statistics of a table of results (docs/reports.md, as rliable computes them): mean and spread
 // over seeds, the interquartile mean, stratified-bootstrap confidence intervals and the
 // probability of improvement.
 //

@@ -8,7 +8,6 @@ namespace rapid {
 using Mat = Eigen::MatrixXf;
 using Vec = Eigen::VectorXf;
 using RowVec = Eigen::RowVectorXf;
-using MatRef = Eigen::Ref<Mat>;
 using ConstMatRef = Eigen::Ref<const Mat>;
 using VecRef = Eigen::Ref<Vec>;
 using ConstVecRef = Eigen::Ref<const Vec>;

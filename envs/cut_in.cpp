@@ -13,10 +13,6 @@ DrivingConfig cut_in_config(const ScenarioSettings& settings) {
   c.scenario = "cut-in";
   c.edges = {"road"};
   c.ego_route = "main";
-  // ε = 0.6 = r_v at 15 m/s, about the obstacles' speed (10-16 m/s): being stuck behind an
-  // obstacle is at or below it, overtaking is above; a tailgating step or a failed lane change at
-  // cruising speed (≤ 0.7 after its penalty ≥ 0.3) drops below it too.
-  c.epsilon = 0.6f;
   return c;
 }
 // Obstacle ids are "obs<k>"; returns k, or -1 for any other vehicle.

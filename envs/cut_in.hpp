@@ -1,4 +1,4 @@
-// cut-in (SPEC §4): slow obstacle vehicles drive at constant speeds well below the ego's desired
+// cut-in (docs/scenarios.md): slow obstacle vehicles drive at constant speeds well below the ego's desired
 // speed on a three-lane road among faster humans. Some obstacles are cutters: when the ego comes
 // up behind them in the next lane, they change into the ego's lane just ahead of it. The ego must
 // brake for the cut-ins and overtake the obstacles to reach its desired speed.

@@ -102,7 +102,7 @@ void DrivingEnv::reset(std::uint64_t seed, VecRef obs) {
       road_read_ = true;
     }
     populate(rng);
-    const int warmup = settings.traffic_warmup + static_cast<int>(rng.index(config_.warmup_jitter + 1));
+    const int warmup = settings.traffic_warmup + static_cast<int>(rng.index(config_.traffic_warmup_jitter + 1));
     for (int i = 0; i < warmup; ++i) Simulation::step();
     const int lane = ego_depart_lane(rng);
     Vehicle::add(kEgo, config_.ego_route, "ego", "now", std::to_string(lane), "base", "max");

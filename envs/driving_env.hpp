@@ -1,4 +1,4 @@
-// The common part of the three SUMO driving scenarios (SPEC §4): one agent-controlled ego among
+// The common part of the three SUMO driving scenarios (docs/scenarios.md): one agent-controlled ego among
 // SUMO-driven humans. Scenarios derive from DrivingEnv and supply their network, where the ego
 // enters, what else to put on the road, and their own observation features.
 //
@@ -36,13 +36,14 @@ struct DrivingConfig {
   std::vector<std::string> edges;  // the road's edges (first one anchors the progress coordinate)
   std::string ego_route;           // route id (in the scenario's .rou.xml) the ego drives
   double step_length = 0.1;        // s
-  int warmup_jitter = 50;          // up to this many extra SUMO steps of traffic warm-up
+  // Up to this many extra SUMO steps of traffic before the ego enters, on top of the profile's
+  // traffic_warmup. (Not the run config's warmup_steps: random-action decisions before learning.)
+  int traffic_warmup_jitter = 50;
   double sensing_range = 100.0;    // R (m): vehicles farther away read as missing
   double lane_end_range = 200.0;   // R_end (m) of the "lane continues ahead" entries
   double speed_norm = 35.0;        // v_norm (m/s): also the ego's top speed under agent control
   double rel_speed_norm = 15.0;    // m/s
   double max_accel = 4.0;          // m/s² at |a0| = 1
-  float epsilon = 0.0f;            // the documented default ε
   int extra_features = 0;          // scenario features appended to the observation
   ScenarioSettings settings;       // horizon, control rate, traffic, reward variant, …
 };
@@ -59,7 +60,6 @@ class DrivingEnv : public Env {
   int obs_dim() const override { return kCommonObs + config_.extra_features; }
   int act_dim() const override { return 2; }
   int horizon() const override { return config_.settings.horizon; }
-  float default_epsilon() const override { return config_.epsilon; }
   void reset(std::uint64_t seed, VecRef obs) override;
   StepResult step(const ConstVecRef& action, VecRef obs) override;
   void set_builtin_driver(bool on) override { builtin_ = on; }

@@ -1,4 +1,4 @@
-// The per-decision reward of the driving scenarios (SPEC §4), SUMO-free so it can be tested and
+// The per-decision reward of the driving scenarios (docs/scenarios.md), SUMO-free so it can be tested and
 // documented on its own (docs/scenarios.md).
 //
 //   r = r_v − offset − w_gap·h(leader) − [ego changed lane] w_gap·h(new follower) − w_fail·[failed LC]

@@ -36,8 +36,6 @@ class Env {
   virtual int act_dim() const = 0;
   // Decisions per episode before truncation.
   virtual int horizon() const = 0;
-  // The scenario's documented RAPID-RL threshold ε, in its own reward units.
-  virtual float default_epsilon() const = 0;
 
   // Starts a new episode whose randomness is fully determined by `seed`; writes s_0 into `obs`.
   virtual void reset(std::uint64_t seed, VecRef obs) = 0;

@@ -12,9 +12,6 @@ DrivingConfig lane_drop_config(const ScenarioSettings& settings) {
   c.edges = {"in", "out"};
   c.ego_route = "main";
   c.extra_features = 1;
-  // ε = 0.4 = r_v at 10 m/s, the congested lane's speed: keeping up with the queue without a
-  // penalty is above it; crawling, tailgating or a failed lane change at queue speed is below.
-  c.epsilon = 0.4f;
   return c;
 }
 constexpr double kFeatureRange = 600.0;

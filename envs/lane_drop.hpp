@@ -1,4 +1,4 @@
-// lane-drop (SPEC §4): three lanes become two; the inflow exceeds what the two lanes pass, so the
+// lane-drop (docs/scenarios.md): three lanes become two; the inflow exceeds what the two lanes pass, so the
 // humans of the ending lane squeeze in and the traffic ahead of the ego is congested. The ego
 // enters on a random lane (the ending one included) and must get through without crashing.
 #pragma once

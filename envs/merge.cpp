@@ -12,9 +12,6 @@ DrivingConfig merge_config(const ScenarioSettings& settings) {
   c.edges = {"acc", "up", "ramp", "down"};
   c.ego_route = "onramp";
   c.extra_features = 1;
-  // ε = 0.6 = r_v at 15 m/s: merging at main-road speed (20-25 m/s) is above it; dawdling on
-  // the ramp, braking hard to squeeze in, or merging into a gap shorter than s* is below.
-  c.epsilon = 0.6f;
   return c;
 }
 }  // namespace

@@ -1,4 +1,4 @@
-// merge (SPEC §4): the ego always enters on the on-ramp, which becomes an acceleration lane
+// merge (docs/scenarios.md): the ego always enters on the on-ramp, which becomes an acceleration lane
 // beside a dense two-lane main road and ends 277 m later. The ego must find a gap and merge
 // before the lane ends (running off its end is a crash), then drive on.
 #pragma once

@@ -16,10 +16,9 @@ class PendulumEnv final : public Env {
   int obs_dim() const override { return 3; }
   int act_dim() const override { return 1; }
   int horizon() const override { return kHorizon; }
-  // Per-step rewards lie in [−16.3, 0]; near the upright goal they are above −0.5.
-  float default_epsilon() const override { return -0.5f; }
 
   void reset(std::uint64_t seed, VecRef obs) override;
+  // Reward −(θ² + 0.1·θ̇² + 0.001·u²): per step in [−16.3, 0], above −0.5 near the upright goal.
   StepResult step(const ConstVecRef& action, VecRef obs) override;
 
   // For tests: the state (angle from upright, angular velocity).

@@ -10,15 +10,22 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${RAPID_BUILD_DIR:-$here/build}
 
 packages=(
-  build-essential cmake git pkg-config
+  build-essential cmake git  # g++ brings OpenMP (libgomp, omp.h); no pkg-config lookup is made
   sumo                     # sumo, netconvert, libsumocpp and its headers
   sumo-tools               # SUMOConfig.cmake and SUMO_HOME (/usr/share/sumo: xsd schemas);
                            # only *recommended* by sumo, so --no-install-recommends skips it
   libeigen3-dev nlohmann-json3-dev libcli11-dev
   libhdf5-dev hdf5-tools   # HDF5 C++ API; h5dump for inspecting datasets
-  libomp-dev libgtest-dev libgmock-dev libbenchmark-dev  # GTestConfig.cmake needs gmock
-  python3-matplotlib       # figures (scripts/plot runs Debian's /usr/bin/python3)
+  libgtest-dev libgmock-dev libbenchmark-dev  # GTestConfig.cmake needs gmock
+  python3 python3-matplotlib  # figures: scripts/plot runs Debian's /usr/bin/python3 (numpy
+                              # comes with matplotlib)
+  python3-pil              # Pillow, for matplotlib's GIF writer (animated figures)
 )
+# Everything else the scripts and tests call is in every Debian root, even a minbase one:
+# coreutils, bash, sed, grep, mawk, util-linux (runuser), hostname. The Slurm daemons
+# (slurmctld slurmd slurm-client munge) are installed by scripts/slurm-local when it first
+# starts a local Slurm, since only scripts/test-slurm needs them.
+# scripts/test-fresh-machine checks on a fresh minbase bookworm that this list is enough.
 
 missing=()
 for p in "${packages[@]}"; do
@@ -31,11 +38,14 @@ if ((${#missing[@]})); then
     command -v sudo >/dev/null || { echo "setup: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
     sudo=sudo
   fi
+  # `env` inside sudo: sudo resets the environment, and a DEBIAN_FRONTEND before it would be lost.
   $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  echo "setup: packages installed"
 fi
 
 export SUMO_HOME=${SUMO_HOME:-/usr/share/sumo}
+echo "setup: building $build_dir"
 cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DRAPID_NATIVE="${RAPID_NATIVE:-OFF}" >/dev/null
 cmake --build "$build_dir" -j "$(nproc)"
 echo "setup: built $build_dir/rapid"

@@ -15,6 +15,12 @@ AgentConfig small_config() {
   AgentConfig c;
   c.actor_hidden = {8, 8};
   c.critic_hidden = {8, 8};
+  c.actor_lr = 3e-4f;
+  c.critic_lr = 3e-4f;
+  c.gamma = 0.99f;
+  c.tau = 0.005f;
+  c.batch_size = kBatch;
+  c.noise_std = 0.1f;
   c.epsilon = -0.15f;
   c.lambda_bc = 1.0f;
   return c;
@@ -30,13 +36,12 @@ Batch hand_made_batch() {
   for (int i = 0; i < b.act.size(); ++i) b.act.data()[i] = static_cast<float>(rng.uniform(-1, 1));
   b.rew << -1.0f, -0.15f, 0.2f, 0.9f, -0.5f, 0.05f, -0.16f, 0.6f;
   b.not_terminal.setOnes();
-  b.timeout.setZero();
   b.prior_count = kBatch / 2;
   return b;
 }
 
 std::unique_ptr<ActorCritic> agent(const std::string& name) {
-  return make_agent(name, kObs, kAct, small_config(), 17);
+  return find_algorithm(name).make(kObs, kAct, small_config(), 17);
 }
 
 }  // namespace
@@ -52,12 +57,12 @@ TEST_P(ActorLossGradient, AgreesWithFiniteDifferences) {
   for (Eigen::Index i = 0; i < a->actor().params().size(); ++i)
     a->actor().params()[i] += static_cast<float>(rng.uniform(-0.3, 0.3));
   const Batch batch = hand_made_batch();
-  a->actor_loss(batch);
+  a->compute_actor_gradient(batch);
   const Vec grads = a->actor().grads();
   ASSERT_GT(grads.norm(), 0.0f);
   double numeric = 0;
   for (Eigen::Index i = 0; i < grads.size(); ++i) {
-    ASSERT_TRUE(test::central_difference_agrees([&] { return static_cast<double>(a->actor_loss(batch)); },
+    ASSERT_TRUE(test::central_difference_agrees([&] { return static_cast<double>(a->compute_actor_gradient(batch)); },
                                                 &a->actor().params()[i], grads[i], &numeric))
         << GetParam() << " actor parameter " << i << ": analytic " << grads[i] << " numeric " << numeric;
   }
@@ -74,7 +79,7 @@ INSTANTIATE_TEST_SUITE_P(AllAlgorithms, ActorLossGradient,
 namespace {
 // The imitation part of a variant's loss: its actor loss minus DDPG's on identical networks.
 double bc_part(const std::string& name, const Batch& batch) {
-  return static_cast<double>(agent(name)->actor_loss(batch)) - agent("ddpg")->actor_loss(batch);
+  return static_cast<double>(agent(name)->compute_actor_gradient(batch)) - agent("ddpg")->compute_actor_gradient(batch);
 }
 }  // namespace
 
@@ -123,9 +128,11 @@ TEST(ColAll, BcTermCoversTheWholeBatch) {
   EXPECT_NEAR(bc_part("rlpd", batch), 0.0, 1e-7);
 }
 
-TEST(Registry, PriorUseAndUnknownNames) {
-  EXPECT_FALSE(algo_uses_prior("ddpg"));
-  for (const char* n : {"rlpd", "col-prior", "col-all", "rapid-rl"}) EXPECT_TRUE(algo_uses_prior(n)) << n;
+TEST(Registry, RowsInThePapersColumnOrderWithPriorUseAndUnknownNames) {
+  EXPECT_EQ(algo_names(), (std::vector<std::string>{"rapid-rl", "rlpd", "col-prior", "col-all", "ddpg"}));
+  EXPECT_FALSE(find_algorithm("ddpg").uses_prior);
+  for (const char* n : {"rlpd", "col-prior", "col-all", "rapid-rl"}) EXPECT_TRUE(find_algorithm(n).uses_prior) << n;
+  EXPECT_EQ(find_algorithm("col-prior").display_name, "CoL-prior");
   try {
     agent("sac");
     FAIL();
@@ -134,12 +141,13 @@ TEST(Registry, PriorUseAndUnknownNames) {
   }
 }
 
-TEST(CriticTarget, MasksTerminalsButBootstrapsThroughTimeouts) {
+// A time-limit truncation is stored as not terminal (ReplayBuffer.SamplesOnlyStoredTransitionsUniformly
+// checks that), so the target bootstraps through it like through any other step.
+TEST(CriticTarget, MasksTerminalsOnly) {
   auto a = agent("ddpg");
   Batch batch = hand_made_batch();
   batch.not_terminal.setOnes();
   batch.not_terminal[2] = 0.0f;  // a collision
-  batch.timeout[5] = 1.0f;       // a time-limit truncation: still bootstrapped
   // At initialisation the target networks equal the online ones.
   const Mat next_pi = a->actor().forward(batch.next_obs);
   Mat sa(kObs + kAct, kBatch);
@@ -156,7 +164,7 @@ TEST(CriticTarget, MasksTerminalsButBootstrapsThroughTimeouts) {
 TEST(ActorCritic, UpdateReducesCriticLossOnAFixedBatch) {
   AgentConfig config = small_config();
   config.critic_lr = 1e-3f;
-  auto a = make_agent("rapid-rl", kObs, kAct, config, 17);
+  auto a = find_algorithm("rapid-rl").make(kObs, kAct, config, 17);
   Batch batch = hand_made_batch();
   batch.not_terminal.setZero();  // y = r: a plain regression the critic must fit
   const float first = a->update(batch).critic_loss;

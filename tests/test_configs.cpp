@@ -1,28 +1,103 @@
-// The per-scenario default configs parse, and their ε is the one each scenario documents.
+// The config key table (experiments/run/config_keys.cpp) against everything that must agree with it:
+// every scenario's config file, the key table of docs/algorithms.md and the ε table of
+// docs/scenarios.md; and overrides checked by key, type, value and scenario.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
+
 #include "envs/env.hpp"
-#include "experiments/run_config.hpp"
+#include "envs/scenario_settings.hpp"
+#include "experiments/run/run_config.hpp"
 
 using namespace rapid;
 
-TEST(DefaultConfigs, ParseAndMatchTheScenariosEpsilon) {
+namespace {
+
+std::string read_doc(const std::string& name) {
+  std::ifstream in(std::string(RAPID_SOURCE_DIR) + "/docs/" + name);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// (profile, scenario) for every config file: the short profile's scenarios, then the flow profile's.
+std::vector<std::pair<std::string, std::string>> config_files() {
+  std::vector<std::pair<std::string, std::string>> files;
+  for (const std::string& p : config_profiles())
+    for (const std::string& s : env_names())
+      if (std::ifstream(std::string(RAPID_SOURCE_DIR) + "/experiments/configs/" + p + "/" + s + ".json")) files.emplace_back(p, s);
+  return files;
+}
+
+// The key table as docs/algorithms.md must show it: one row per key, one value column per config
+// file (a scenario key a short file leaves out shows the scenario's built-in value).
+std::string key_table_markdown() {
+  std::ostringstream out;
+  const auto files = config_files();
+  out << "| key | configures | accepts | meaning |";
+  for (const auto& [p, s] : files) out << " " << (p == kDefaultProfile ? "" : p + " ") << s << " |";
+  out << "\n| --- | --- | --- | --- |";
+  for (std::size_t i = 0; i < files.size(); ++i) out << " ---: |";
+  out << "\n";
+  for (const ConfigKey& key : config_keys()) {
+    out << "| `" << key.name << "` | " << part_name(key.part) << " | " << key.accepts() << " | " << key.doc << " |";
+    for (const auto& [p, s] : files) {
+      const RunConfig c = run_config_from_json(default_config_json(s, p), s);
+      out << " " << (key.applies_to(s) ? key.write(c).dump() : "—") << " |";
+    }
+    out << "\n";
+  }
+  return out.str();
+}
+
+// The text between two marker lines of a document ("" if they are missing).
+std::string between(const std::string& doc, const std::string& begin, const std::string& end) {
+  const auto b = doc.find(begin), e = doc.find(end);
+  if (b == std::string::npos || e == std::string::npos || e < b) return "";
+  const auto start = doc.find('\n', b) + 1;
+  return doc.substr(start, e - start);
+}
+
+}  // namespace
+
+TEST(DefaultConfigs, EveryScenarioHasAValidConfigWithExactlyItsKeys) {
   for (const std::string& scenario : env_names()) {
     SCOPED_TRACE(scenario);
-    const RunConfig c = run_config_from_json(default_config_json(scenario));
-    EXPECT_FLOAT_EQ(c.agent.epsilon, make_env(scenario)->default_epsilon());
+    const RunConfig c = run_config_from_json(default_config_json(scenario), scenario);
     EXPECT_GT(c.steps, c.warmup_steps);
     EXPECT_LE(c.eval_every, c.steps);
   }
 }
 
-TEST(DefaultConfigs, OverridesAreCheckedByKeyAndType) {
+TEST(DefaultConfigs, TheKeyTableOfDocsAlgorithmsMdIsTheConfigKeysAndFiles) {
+  const std::string documented =
+      between(read_doc("algorithms.md"), "<!-- config keys: begin", "<!-- config keys: end -->");
+  EXPECT_EQ(documented, key_table_markdown())
+      << "docs/algorithms.md's key table is out of date; replace the lines between its config-keys markers with:\n"
+      << key_table_markdown();
+}
+
+TEST(DefaultConfigs, EpsilonOfEachDrivingScenarioIsTheOneDocsScenariosMdExplains) {
+  const std::string doc = read_doc("scenarios.md");
+  for (const std::string& scenario : {"lane-drop", "cut-in", "merge"}) {
+    SCOPED_TRACE(scenario);
+    const std::string row = "\n| " + scenario + " | ";
+    const auto at = doc.find(row);
+    ASSERT_NE(at, std::string::npos) << "docs/scenarios.md has no ε row for " << scenario;
+    const double documented = std::stod(doc.substr(at + row.size()));
+    EXPECT_DOUBLE_EQ(documented, default_config_json(scenario).at("epsilon").get<double>());
+  }
+}
+
+TEST(DefaultConfigs, OverridesAreCheckedByKeyTypeAndValue) {
   nlohmann::json base = default_config_json("pendulum");
-  EXPECT_THROW(apply_overrides(base, {{"nosuchkey", 1}}, "test"), std::invalid_argument);
-  EXPECT_THROW(apply_overrides(base, {{"steps", 1.5}}, "test"), std::invalid_argument);
-  EXPECT_THROW(apply_overrides(base, {{"actor_hidden", {64, "x"}}}, "test"), std::invalid_argument);
-  apply_overrides(base, {{"steps", 123}, {"actor_lr", 1}}, "test");  // an integer is a fine float
-  EXPECT_EQ(run_config_from_json(base).steps, 123);
+  EXPECT_THROW(apply_overrides(base, {{"nosuchkey", 1}}, "pendulum", "test"), std::invalid_argument);
+  EXPECT_THROW(apply_overrides(base, {{"steps", 1.5}}, "pendulum", "test"), std::invalid_argument);
+  EXPECT_THROW(apply_overrides(base, {{"steps", -1}}, "pendulum", "test"), std::invalid_argument);
+  EXPECT_THROW(apply_overrides(base, {{"actor_hidden", {64, "x"}}}, "pendulum", "test"), std::invalid_argument);
+  apply_overrides(base, {{"steps", 123}, {"actor_lr", 1}}, "pendulum", "test");  // an integer is a fine number
+  EXPECT_EQ(run_config_from_json(base, "pendulum").steps, 123);
   nlohmann::json sets = nlohmann::json::object();
   parse_set_option("actor_hidden=[32,32]", sets);
   parse_set_option("epsilon=-0.2", sets);
@@ -31,3 +106,85 @@ TEST(DefaultConfigs, OverridesAreCheckedByKeyAndType) {
   EXPECT_THROW(parse_set_option("=3", sets), std::invalid_argument);
   EXPECT_THROW(parse_set_option("steps", sets), std::invalid_argument);
 }
+
+TEST(DefaultConfigs, MessagesNameTheKeyAndWhatItAccepts) {
+  nlohmann::json base = default_config_json("pendulum");
+  const auto message = [&](const nlohmann::json& overrides) {
+    try {
+      apply_overrides(base, overrides, "pendulum", "--set");
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message({{"gamma", 1}}), "--set: config key 'gamma' must be in [0, 1), got 1");
+  EXPECT_EQ(message({{"batch_size", 1}}), "--set: config key 'batch_size' must be at least 2, got 1");
+  EXPECT_EQ(message({{"steps", "many"}}), "--set: config key 'steps' expects an integer, got \"many\"");
+  EXPECT_EQ(message({{"critic_hidden", {64, 0}}}), "--set: config key 'critic_hidden' entries must each be positive, got [64,0]");
+  EXPECT_EQ(message({{"stepz", 3}}), "--set: unknown config key 'stepz'");
+}
+
+// A key that only some scenarios have (the driving scenarios' traffic, say) is required there,
+// refused elsewhere, and may not be overridden where it does not apply.
+TEST(DefaultConfigs, AKeyOfSomeScenariosOnlyIsRequiredThereAndRefusedElsewhere) {
+  std::vector<ConfigKey> keys = config_keys();
+  ConfigKey only_merge = *find_config_key("steps");
+  only_merge.name = "merge_only";
+  only_merge.for_scenario = [](const std::string& s) { return s == "merge"; };
+  only_merge.read = [](const nlohmann::json&, RunConfig&) {};  // no field of its own
+  keys.push_back(only_merge);
+
+  nlohmann::json pendulum = default_config_json("pendulum");
+  EXPECT_NO_THROW(run_config_from_json(pendulum, "pendulum", keys));
+  EXPECT_THROW(apply_overrides(pendulum, {{"merge_only", 5}}, "pendulum", "test", keys), std::invalid_argument);
+  pendulum["merge_only"] = 5;
+  EXPECT_THROW(run_config_from_json(pendulum, "pendulum", keys), std::invalid_argument);
+
+  nlohmann::json merge = default_config_json("merge");
+  EXPECT_THROW(run_config_from_json(merge, "merge", keys), std::invalid_argument);  // missing
+  apply_overrides(merge, {{"merge_only", 5}}, "merge", "test", keys);
+  EXPECT_NO_THROW(run_config_from_json(merge, "merge", keys));
+}
+
+// Scenario keys: a short file leaves them out and gets the scenario's built-in values; the flow
+// files set the paper's scale; values are checked by key, by scenario and across keys.
+TEST(ScenarioKeys, ShortFilesKeepTheBuiltInSettingsAndFlowFilesSetThePapersScale) {
+  for (const std::string scenario : {"lane-drop", "cut-in", "merge"}) {
+    SCOPED_TRACE(scenario);
+    const RunConfig short_config = run_config_from_json(default_config_json(scenario), scenario);
+    const ScenarioSettings built_in = default_scenario_settings(scenario);
+    EXPECT_EQ(short_config.scenario.horizon, built_in.horizon);
+    EXPECT_EQ(short_config.scenario.action_repeat, 5);
+    EXPECT_EQ(short_config.scenario.reward, "short");
+    const RunConfig flow = run_config_from_json(default_config_json(scenario, "flow"), scenario);
+    EXPECT_EQ(flow.scenario.action_repeat, 1);  // 0.1 s decisions
+    EXPECT_GE(flow.scenario.horizon, 1500);
+    EXPECT_EQ(flow.scenario.reward, "flow");
+    EXPECT_EQ(flow.scenario.network, "long");
+    EXPECT_FLOAT_EQ(flow.agent.epsilon, -0.15f);  // the paper's ε, unchanged in every scenario
+  }
+  EXPECT_THROW(check_profile("flow", "pendulum"), std::invalid_argument);
+  EXPECT_THROW(check_profile("tiny", "merge"), std::invalid_argument);
+  EXPECT_NO_THROW(check_profile("flow", "merge"));
+}
+
+TEST(ScenarioKeys, BadValuesAreRefusedNamingTheKey) {
+  const auto message = [](const std::string& scenario, const nlohmann::json& overrides) {
+    try {
+      resolve_config(scenario, "flow", overrides, nlohmann::json());
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message("merge", {{"reward", "fast"}}), "grid: config key 'reward' expects one of short, flow, got \"fast\"");
+  EXPECT_EQ(message("merge", {{"obstacles", 3}}), "grid: config key 'obstacles' does not apply to scenario 'merge'");
+  EXPECT_EQ(message("lane-drop", {{"ramp_inflow", 100}}),
+            "grid: config key 'ramp_inflow' does not apply to scenario 'lane-drop'");
+  EXPECT_EQ(message("merge", {{"action_repeat", 0}}), "grid: config key 'action_repeat' must be in [1, 50], got 0");
+  EXPECT_EQ(message("cut-in", {{"obstacle_speed_min", 20.0}}),
+            "config key obstacle_speed_max: must be at least obstacle_speed_min and at most 35 m/s");
+  EXPECT_EQ(message("pendulum", {{"horizon", 100}}), "scenario 'pendulum' has no 'flow' profile");
+  EXPECT_EQ(message("merge", {{"horizon", 100}}), "no error");
+}
+

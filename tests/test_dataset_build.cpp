@@ -86,6 +86,34 @@ TEST(DatasetBuild, WritesCheckpointsDatasetsAndReusesThem) {
   EXPECT_EQ(read_dataset(out + "/initial.h5").size(), 600u);
 }
 
+// The flow profile's budget rule: the reference trains L = reference.steps, `initial` and `medium`
+// come from its actor at 1/10 and 1/2 of the cells' budget T, `final` from the end of its run.
+TEST(DatasetBuild, AReferenceLongerThanTheBudgetCheckpointsAtTheBudgetsFractions) {
+  rapid::testing::ScratchDir dir;
+  write_grid(dir.file("grid.json"), 400);
+  nlohmann::json grid = nlohmann::json::parse(read_file(dir.file("grid.json")));
+  grid["reference"]["steps"] = 3000;  // L; the cells' T is 2,000
+  write_file_atomic(dir.file("grid.json"), grid.dump());
+  const auto r = rapid_cli("dataset build --scenario pendulum --grid " + dir.file("grid.json") + " --dir " + dir.file("data"),
+                           /*with_stderr=*/true);
+  ASSERT_EQ(r.exit_code, 0) << r.text;
+  const std::string out = dir.file("data/pendulum");
+  for (const char* f : {"reference/actor_200.ckpt", "reference/actor_1000.ckpt", "reference/actor.ckpt"})
+    EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
+  const auto record = nlohmann::json::parse(read_file(out + "/reference/record.json"));
+  EXPECT_EQ(record["config"]["steps"], 3000);
+  EXPECT_NE(read_dataset(out + "/medium.h5").metadata.at("source_checkpoint").find("actor_1000"), std::string::npos);
+  EXPECT_NE(read_dataset(out + "/final.h5").metadata.at("source_checkpoint").find("step 3000"), std::string::npos);
+
+  grid["reference"]["steps"] = 1500;  // below the cells' budget: refused before anything runs
+  write_file_atomic(dir.file("grid.json"), grid.dump());
+  const auto bad = rapid_cli("dataset build --scenario pendulum --grid " + dir.file("grid.json") + " --dir " + dir.file("d2"),
+                             /*with_stderr=*/true);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.text.find("reference.steps: 1500 is below the cells' budget of 2000 steps"), std::string::npos) << bad.text;
+  EXPECT_FALSE(fs::exists(dir.file("d2")));
+}
+
 TEST(DatasetBuild, BadInputExitsTwo) {
   rapid::testing::ScratchDir dir;
   const auto r = rapid_cli("dataset build --scenario nowhere --dir " + dir.file("d"), /*with_stderr=*/true);

@@ -67,9 +67,15 @@ TEST_P(UpdateAllocation, GradientUpdateAllocatesNothingAfterWarmUp) {
   const int obs_dim = 18, act_dim = 2;
   AgentConfig config;
   config.actor_hidden = config.critic_hidden = {128, 128};
+  config.actor_lr = 3e-4f;
+  config.critic_lr = 3e-4f;
+  config.gamma = 0.99f;
+  config.tau = 0.005f;
   config.batch_size = 128;
+  config.lambda_bc = 1.0f;
   config.epsilon = 0.0f;
-  auto agent = make_agent(GetParam(), obs_dim, act_dim, config, 5);
+  const Algorithm& algo = find_algorithm(GetParam());
+  auto agent = algo.make(obs_dim, act_dim, config, 5);
   ReplayBuffer prior(obs_dim, act_dim, 512), online(obs_dim, act_dim, 512);
   Rng data_rng(6);
   for (int i = 0; i < 300; ++i) {
@@ -78,7 +84,7 @@ TEST_P(UpdateAllocation, GradientUpdateAllocatesNothingAfterWarmUp) {
     prior.add(s, a, r, s2, i % 17 == 0, false);
     online.add(s, a, -r, s2, false, i % 13 == 0);
   }
-  SymmetricSampler sampler(agent->uses_prior() ? &prior : nullptr, &online);
+  SymmetricSampler sampler(algo.uses_prior ? &prior : nullptr, &online);
   Batch batch;
   batch.resize(obs_dim, act_dim, config.batch_size);
   Rng rng(7);

@@ -43,6 +43,7 @@ TEST(ReplayBuffer, SamplesOnlyStoredTransitionsUniformly) {
       ASSERT_LE(r, 9.0f);
       ASSERT_EQ(batch.obs(0, c), r);  // fields of one transition stay together
       ASSERT_EQ(batch.next_obs(2, c), r + 0.5f);
+      // Transition 5 is a timeout only: not a terminal, so the critic target bootstraps through it.
       ASSERT_EQ(batch.not_terminal[c], static_cast<int>(r) % 3 == 0 ? 0.0f : 1.0f);
       ++counts[static_cast<int>(r)];
     }

@@ -132,7 +132,7 @@ TEST(RapidRun, BadInputExitsTwoWithOneLineAndWritesNothing) {
       {"run --scenario highway --algo ddpg --seed 0" + out, "--scenario: unknown scenario 'highway'"},
       {"run --scenario pendulum --algo ddpg --seed -1" + out, "--seed: must be a non-negative integer"},
       {"run --scenario pendulum --algo ddpg --seed 0 --set stepz=3" + out, "unknown config key 'stepz'"},
-      {"run --scenario pendulum --algo ddpg --seed 0 --set steps=abc" + out, "config key 'steps' expects number"},
+      {"run --scenario pendulum --algo ddpg --seed 0 --set steps=abc" + out, "config key 'steps' expects an integer"},
       {"run --scenario pendulum --algo ddpg --seed 0 --set batch_size=1" + out, "'batch_size' must be at least 2"},
       {"run --scenario pendulum --algo ddpg --seed 0 --dataset medium" + out, "'ddpg' takes no dataset"},
       {"run --scenario pendulum --algo rlpd --seed 0" + out, "'rlpd' needs a prior dataset"},

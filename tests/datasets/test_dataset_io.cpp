@@ -259,7 +259,7 @@ TEST(DatasetIo, WriteReplacesAtomicallyAndLeavesNoTemporaries) {
   EXPECT_EQ(entries, 1);
 }
 
-// SPEC §11: a writer killed at any moment leaves the old file or the new one, never a part.
+// docs/design.md §Sweeps: a writer killed at any moment leaves the old file or the new one, never a part.
 TEST(DatasetIo, KilledWriterNeverLeavesAPartialFile) {
   ScratchDir dir;
   const std::string target = dir.file("d.h5");

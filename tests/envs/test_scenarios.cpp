@@ -1,4 +1,4 @@
-// What makes each scenario the scenario of SPEC §4.
+// What makes each scenario the scenario docs/scenarios.md describes.
 #include <gtest/gtest.h>
 
 #include <libsumo/libsumo.h>

@@ -1,5 +1,5 @@
-// `rapid bench --quick` runs and writes a JSON object with the keys issue 9 names. Speed itself is
-// never asserted: the machines are shared and noisy (SPEC §10: a benchmark, not a timed test).
+// `rapid bench --quick` runs and writes a JSON object with the keys docs/performance.md names. Speed itself is
+// never asserted: the machines are shared and noisy (docs/design.md §Performance rules: a benchmark, not a timed test).
 #include <gtest/gtest.h>
 
 #include <cstdlib>

@@ -1,4 +1,4 @@
-// Allocations of one env decision (SPEC §10: hot paths allocate nothing per step). libsumo's own
+// Allocations of one env decision (docs/design.md §Performance rules: hot paths allocate nothing per step). libsumo's own
 // allocations inside its calls are outside the harness's budget; they are counted and reported
 // (as test properties and on stdout), split into SUMO's stepping and the env's state queries.
 #include <gtest/gtest.h>

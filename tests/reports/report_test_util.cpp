@@ -4,7 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "experiments/sweep_state.hpp"
+#include "experiments/sweep/state.hpp"
 
 namespace rapid::report_test {
 

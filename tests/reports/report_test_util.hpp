@@ -18,7 +18,7 @@ struct BcPoint {
   double step, prior, online;
 };
 
-// One run record (SPEC §8, as experiments/job.cpp writes it).
+// One run record (docs/design.md §Records, as experiments/run/record.cpp writes it).
 struct FakeRun {
   std::string scenario, dataset, algo;  // dataset empty for ddpg
   std::uint64_t seed = 0;

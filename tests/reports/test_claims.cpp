@@ -4,9 +4,9 @@
 
 #include <map>
 
+#include "experiments/report/claims_markdown.hpp"
+#include "experiments/report/summarize.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
-#include "experiments/report_claims.hpp"
-#include "experiments/summary.hpp"
 #include "tests/reports/report_test_util.hpp"
 
 namespace rapid {

@@ -6,9 +6,9 @@
 #include <cmath>
 
 #include "core/statistics.hpp"
+#include "experiments/report/summarize.hpp"
+#include "experiments/report/tables.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
-#include "experiments/report_tables.hpp"
-#include "experiments/summary.hpp"
 #include "tests/reports/report_test_util.hpp"
 
 namespace rapid {

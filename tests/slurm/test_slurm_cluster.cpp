@@ -1,4 +1,4 @@
-// Whole sweeps through a real Slurm (issue 8). Skipped unless RAPID_SLURM_TESTS=1 and `sinfo`
+// Whole sweeps through a real Slurm (docs/cluster.md). Skipped unless RAPID_SLURM_TESTS=1 and `sinfo`
 // answers: scripts/test-slurm starts a throwaway single-node Slurm (scripts/slurm-local), runs
 // these and stops it.
 //  - The smoke grid (or $RAPID_SLURM_TEST_GRID) gives the same records and datasets through

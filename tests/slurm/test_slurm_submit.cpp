@@ -1,4 +1,4 @@
-// `rapid sweep --backend slurm` without a cluster (issue 8): --dry-run prints one throttled array
+// `rapid sweep --backend slurm` without a cluster (docs/cluster.md): --dry-run prints one throttled array
 // per scenario and stage chained with afterok (cells that need no dataset in an array of their
 // own) and writes nothing; a submission (to a fake sbatch) chains the real ids, records them and writes the task lists; a folder whose arrays are still queued is
 // refused; a resubmission holds only the jobs that are not done; bad options are usage errors.

@@ -16,8 +16,8 @@
 #include "core/dataset.hpp"
 #include "core/dataset_io.hpp"
 #include "envs/env.hpp"
-#include "experiments/grid.hpp"
-#include "experiments/sweep_state.hpp"
+#include "experiments/sweep/grid.hpp"
+#include "experiments/sweep/state.hpp"
 
 #ifndef RAPID_BIN
 #error "RAPID_BIN must name the built rapid binary"

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <functional>
 
-#include "experiments/grid.hpp"
-#include "experiments/sweep_graph.hpp"
-#include "experiments/sweep_selection.hpp"
+#include "experiments/sweep/graph.hpp"
+#include "experiments/sweep/grid.hpp"
+#include "experiments/sweep/selection.hpp"
 
 namespace rapid {
 namespace {
@@ -74,7 +74,7 @@ TEST(Grid, EachMalformedGridNamesItsField) {
       {"duplicate seed", [](json& g) { g["seeds"] = {3, 3}; }, "grid g.json: seeds[1]: duplicate seed 3"},
       {"unknown config key", [](json& g) { g["config"]["stepz"] = 1; }, "grid g.json: config: unknown config key 'stepz'"},
       {"config value of the wrong type", [](json& g) { g["config"]["steps"] = "many"; },
-       "grid g.json: config: config key 'steps' expects number"},
+       "grid g.json: config: config key 'steps' expects an integer"},
       {"bad config value", [](json& g) { g["config"]["steps"] = -5; }, "grid g.json: config: config key 'steps' must be positive"},
       {"unknown scenario_config key", [](json& g) { g["scenario_config"] = {{"pendulum", {{"gama", 0.9}}}}; },
        "grid g.json: scenario_config.pendulum: unknown config key 'gama'"},

@@ -1,5 +1,5 @@
 // `rapid sweep` and `rapid status` refuse bad input with exit 2, one line naming the field, and
-// nothing written (SPEC §3, §11).
+// nothing written (docs/design.md §Command line).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -46,7 +46,7 @@ TEST(SweepCli, EachMalformedGridIsRejectedWithOneLineAndNoFolder) {
       {"unknown config key", edited([](json& g) { g["config"]["learning_rate"] = 0.1; }),
        "config: unknown config key 'learning_rate'"},
       {"config value of the wrong type", edited([](json& g) { g["config"]["batch_size"] = 6.5; }),
-       "config: config key 'batch_size' expects number"},
+       "config: config key 'batch_size' expects an integer"},
       {"bad scenario override", edited([](json& g) { g["scenario_config"] = {{"pendulum", {{"tau", "x"}}}}; }),
        "scenario_config.pendulum: config key 'tau'"},
   };

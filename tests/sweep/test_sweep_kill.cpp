@@ -1,4 +1,4 @@
-// Reliability under kills (SPEC §11, issue 6): kill -9 of a training child, kill -9 of the
+// Reliability under kills (docs/design.md §Sweeps): kill -9 of a training child, kill -9 of the
 // runner, a second sweep on a busy folder, and Ctrl-C. Each disturbed sweep must end with the
 // same records (timings and provenance times aside) as an undisturbed one.
 #include <gtest/gtest.h>

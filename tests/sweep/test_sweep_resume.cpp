@@ -1,4 +1,4 @@
-// Resuming and partial reruns (SPEC §11, issue 6): a finished sweep reruns nothing, --only with
+// Resuming and partial reruns (docs/design.md §Sweeps): a finished sweep reruns nothing, --only with
 // --force reruns exactly the selected jobs, a grid change reruns exactly the jobs it touches,
 // and `rapid status` counts what the files say, failed jobs with their errors included.
 #include <gtest/gtest.h>

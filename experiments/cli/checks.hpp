@@ -1,0 +1,32 @@
+// Option validators and help-text pieces shared by several subcommands.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
+#include <string>
+#include <vector>
+
+namespace rapid {
+
+// A seed is a non-negative integer that fits 64 bits (CLI11's own range check prints ±1.8e308).
+inline CLI::Validator seed_validator() {
+  return CLI::Validator(
+      [](std::string& s) -> std::string {
+        const bool digits = !s.empty() && s.size() <= 19 &&
+                            std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
+        return digits ? "" : "must be a non-negative integer, got '" + s + "'";
+      },
+      "SEED");
+}
+
+// "a, b, c or d": the names a help text offers, read from the registry that defines them
+// (env_names(), algo_names(), dataset_names()) so that help cannot fall behind it.
+inline std::string names_or(const std::vector<std::string>& names) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  return out;
+}
+
+}  // namespace rapid

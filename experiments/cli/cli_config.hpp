@@ -1,0 +1,15 @@
+// The config a `rapid run` or `rapid dataset build` resolves from its options: the profile (from
+// --profile, else the grid's, else short), the grid's overrides for the scenario, then --set.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace rapid {
+
+// Throws std::invalid_argument naming the option that is wrong (an unknown profile, one that
+// differs from the grid's, a bad grid or override).
+nlohmann::json resolve_cli_config(const std::string& scenario, const std::string& profile, const std::string& grid_path,
+                                  const nlohmann::json& set_overrides);
+
+}  // namespace rapid

@@ -1,0 +1,83 @@
+// `rapid run`: train one job (one seed of one table cell) and write its run record (docs/design.md §Jobs, §Records).
+#include <filesystem>
+
+#include "algos/registry.hpp"
+#include "envs/env.hpp"
+#include "experiments/cli/checks.hpp"
+#include "experiments/cli/cli_config.hpp"
+#include "experiments/cli/commands.hpp"
+#include "experiments/cli/errors.hpp"
+#include "experiments/run/dataset_build.hpp"
+#include "experiments/run/job.hpp"
+#include "experiments/run/run_config.hpp"
+#include "experiments/run/run_job.hpp"
+#include "experiments/sweep/grid.hpp"
+
+namespace rapid {
+
+namespace {
+
+struct RunOptions {
+  std::string scenario, algo, dataset, dataset_dir = "datasets", grid, out, profile;
+  std::uint64_t seed = 0;
+  std::vector<std::string> sets;
+  std::vector<long> checkpoint_at;
+};
+
+// A named dataset lives at DIR/<scenario>/<name>.h5; anything else is taken as a path.
+std::string resolve_dataset_path(const RunOptions& o) {
+  for (const auto& name : dataset_names())
+    if (o.dataset == name) return DatasetFolder(o.dataset_dir, o.scenario).dataset(name);
+  return o.dataset;
+}
+
+
+int run_command(const RunOptions& o) {
+  JobSpec spec;
+  check_option("--scenario", [&] { make_env(o.scenario); });
+  check_option("--algo", [&] { find_algorithm(o.algo); });
+  check_option("--dataset", [&] { check_dataset_fits(o.algo, !o.dataset.empty()); });
+  spec.scenario = o.scenario;
+  spec.algo = o.algo;
+  spec.seed = o.seed;
+  spec.out_dir = o.out;
+  spec.checkpoint_steps = o.checkpoint_at;
+  if (!o.dataset.empty()) {
+    spec.dataset = o.dataset;
+    spec.dataset_path = resolve_dataset_path(o);
+    if (!std::filesystem::is_regular_file(spec.dataset_path))
+      throw UsageError("--dataset: no dataset file at '" + spec.dataset_path + "'");
+  }
+  nlohmann::json sets = nlohmann::json::object();
+  try {
+    for (const auto& s : o.sets) parse_set_option(s, sets);
+    spec.config = resolve_cli_config(o.scenario, o.profile, o.grid, sets);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  return run_job(spec);
+}
+
+}  // namespace
+
+Command add_run_command(CLI::App& parent) {
+  auto o = std::make_shared<RunOptions>();
+  CLI::App* sub = parent.add_subcommand("run", "Train one job and write its run record");
+  sub->add_option("--scenario", o->scenario, names_or(env_names()))->required();
+  sub->add_option("--algo", o->algo, names_or(algo_names()))->required();
+  std::vector<std::string> datasets = dataset_names();
+  datasets.push_back("a D4RL-layout HDF5 path");
+  sub->add_option("--dataset", o->dataset, names_or(datasets));
+  sub->add_option("--dataset-dir", o->dataset_dir, "where named datasets live (DIR/<scenario>/<name>.h5)");
+  sub->add_option("--seed", o->seed, "run seed (network init, exploration, sampling, traffic)")
+      ->required()
+      ->check(seed_validator());
+  sub->add_option("--grid", o->grid, "grid file whose profile and config overrides apply");
+  sub->add_option("--profile", o->profile, "config profile: short (default) or flow (docs/scenarios.md)");
+  sub->add_option("--set", o->sets, "override a config key: --set key=value (repeatable)");
+  sub->add_option("--out", o->out, "job folder for record.json, actor.ckpt and progress.json")->required();
+  sub->add_option("--checkpoint-at", o->checkpoint_at, "also save the actor after these steps")->group("");
+  return {sub, [o] { return run_command(*o); }};
+}
+
+}  // namespace rapid

@@ -1,0 +1,265 @@
+// `rapid sweep GRID`: run a grid's job graph into a sweep folder, resuming whatever is done
+// (docs/sweeps.md, docs/design.md §Sweeps). Validation happens first and writes nothing; then the folder is locked,
+// its grid.json updated, and the backend runs the jobs.
+#include <unistd.h>
+
+#include <iostream>
+#include <regex>
+#include <thread>
+
+#include "core/atomic_file.hpp"
+#include "experiments/cli/commands.hpp"
+#include "experiments/cli/errors.hpp"
+#include "experiments/sweep/grid.hpp"
+#include "experiments/sweep/local_backend.hpp"
+#include "experiments/sweep/lock.hpp"
+#include "experiments/sweep/process_pool.hpp"
+#include "experiments/sweep/progress.hpp"
+#include "experiments/sweep/selection.hpp"
+#include "experiments/sweep/slurm_backend.hpp"
+#include "experiments/sweep/slurm_task.hpp"
+#include "experiments/sweep/state.hpp"
+
+namespace rapid {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SweepOptions {
+  std::string grid, only, backend = "local", out;
+  int jobs = 0;  // 0: the grid's "jobs", else the number of cores
+  bool force = false;
+  bool no_summary = false;
+  std::string job_timeout;  // local: e.g. 90s, 45m, 2h; empty: no limit
+  // --backend slurm (sweep/slurm_backend.hpp)
+  SlurmOptions slurm;
+  bool dry_run = false;
+  bool slurm_option_given = false;  // any of the slurm-only options, to reject them for local
+  // The hidden array-task mode (sweep/slurm_task.hpp): the positional argument is the sweep folder.
+  long run_job = -1;
+  std::string job_list;
+};
+
+// "90", "90s", "45m", "2h", "1.5h", "1d" → seconds; throws UsageError naming the option.
+double parse_job_timeout(const std::string& text) {
+  static const std::regex pattern(R"(([0-9]+(\.[0-9]+)?)([smhd]?))");
+  std::smatch m;
+  const double scale[] = {1, 60, 3600, 86400};
+  if (std::regex_match(text, m, pattern)) {
+    const std::string unit = m[3].str();
+    const double seconds = std::stod(m[1].str()) * scale[unit.empty() ? 0 : std::string("smhd").find(unit[0])];
+    if (seconds > 0) return seconds;
+  }
+  throw UsageError("--job-timeout: '" + text + "' is not a positive duration; use e.g. 90s, 45m or 2h");
+}
+
+// The backends `--backend` accepts: local runs the job graph here (sweep/local_backend.hpp); slurm gets
+// the same validated folder and job graph and submits job arrays instead (sweep/slurm_backend.hpp).
+const std::vector<std::string> kBackends = {"local", "slurm"};
+
+// Writes the resolved grid into the folder, saying what changed since the last sweep there.
+void update_grid_file(const SweepFolder& folder, std::ostream& notes) {
+  const fs::path path = folder.path(sweep_files::kGrid);
+  const std::string text = folder.grid.normalized.dump(2) + "\n";
+  if (fs::exists(path)) {
+    const auto before = read_json_file(path);
+    if (before && *before == folder.grid.normalized) return;
+    if (!before) {
+      notes << "rapid sweep: " << path.string() << " was unreadable; replacing it\n";
+    } else {
+      notes << "rapid sweep: the grid differs from the one last run in " << folder.dir.string()
+            << "; jobs whose config changed rerun, the others are kept:\n";
+      for (const auto& change : grid_differences(*before, folder.grid.normalized)) notes << "  " << change << "\n";
+    }
+  }
+  write_file_atomic(path.string(), text);
+}
+
+std::unique_ptr<SweepLock> lock_folder(const fs::path& dir) {
+  try {
+    return std::make_unique<SweepLock>(dir);
+  } catch (const SweepFolderBusy& e) {
+    throw UsageError(e.what());
+  }
+}
+
+// --dry-run: the scripts that would be submitted, with the task → job mapping; writes nothing.
+void print_slurm_plan(const SweepFolder& folder, const SlurmPlan& plan, const SlurmOptions& options) {
+  for (std::size_t a = 0; a < plan.arrays.size(); ++a) {
+    const SlurmArray& array = plan.arrays[a];
+    std::string after;
+    for (std::size_t k : array.after)
+      after += (after.empty() ? "" : ":") + std::string("<job id of the ") + plan.arrays[k].name + " array>";
+    std::cout << "#### " << (folder.dir / array.script).string() << "\n"
+              << sbatch_script(folder, plan, a, after, options);
+    std::cout << "#### " << (folder.dir / array.list).string() << ":";
+    for (std::size_t t = 0; t < array.tasks.size(); ++t)
+      std::cout << "\n#   task " << t << ": " << array.tasks[t].job << (array.tasks[t].force ? " (forced)" : "");
+    std::cout << "\n\n";
+  }
+}
+
+// --backend slurm: prepare the folder like the local backend, then submit the job arrays
+// (sweep/slurm_backend.hpp) and return without waiting. The lock is held only while submitting; the tasks share it.
+int submit_to_slurm(const SweepOptions& o, SweepFolder& folder, const Selection& selection) {
+  if (o.jobs > 0)
+    throw UsageError("--jobs: the slurm backend runs each job as an array task; use --array-parallelism to limit them");
+  try {
+    check_sbatch_args(o.slurm.sbatch_args);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  SlurmOptions options = o.slurm;
+  options.binary = current_executable();
+  const fs::path& dir = folder.dir;
+  if (fs::exists(dir) && !fs::is_directory(dir)) throw UsageError("--out: '" + dir.string() + "' is not a folder");
+  if (o.dry_run) {
+    const SlurmPlan plan = plan_slurm_sweep(folder, selection, o.force);
+    if (plan.arrays.empty()) std::cerr << "rapid sweep: nothing to submit: all " << plan.needed << " jobs are done\n";
+    print_slurm_plan(folder, plan, options);
+    return kExitOk;
+  }
+  try {
+    const std::vector<std::string> queued = queued_slurm_jobs(folder);
+    if (!queued.empty()) {
+      std::string ids;
+      for (const auto& id : queued) ids += (ids.empty() ? "" : ", ") + id;
+      throw UsageError("sweep folder " + dir.string() + " still has Slurm jobs queued or running (" + ids +
+                       "); wait for them or scancel them, then submit again");
+    }
+  } catch (const SlurmError& e) {
+    std::cerr << "rapid sweep: warning: cannot check for earlier submissions still queued: " << e.what() << "\n";
+  }
+  fs::create_directories(dir);
+  const auto lock = lock_folder(dir);
+  update_grid_file(folder, std::cerr);
+  SlurmPlan plan = plan_slurm_sweep(folder, selection, o.force);
+  if (plan.arrays.empty()) {
+    std::cout << "sweep " << dir.string() << ": nothing to submit, all " << plan.needed << " jobs are done\n";
+    return kExitOk;
+  }
+  try {
+    submit_slurm_plan(folder, plan, options);
+  } catch (const SlurmError& e) {
+    std::cerr << "rapid sweep: " << e.what() << "\n";
+    return kExitFailed;
+  }
+  const auto count = [](std::size_t n, const char* what) { return std::to_string(n) + " " + what + (n == 1 ? "" : "s"); };
+  std::cout << "sweep " << dir.string() << ": submitted " << count(plan.tasks(), "job") << " to Slurm (" << plan.done
+            << " already done)\n";
+  for (const SlurmArray& array : plan.arrays)
+    std::cout << "  " << array.name << ": job " << array.job_id << ", " << count(array.tasks.size(), "task") << "\n";
+  std::cout << "check with: rapid status " << dir.string() << "   (task output: " << (dir / "slurm").string()
+            << "/, scripts and task lists: " << (dir / plan.submission).string() << "/)\n";
+  return kExitOk;
+}
+
+// The hidden `rapid sweep SWEEP --run-job I --job-list LIST` an array task runs.
+int sweep_task_command(const SweepOptions& o) {
+  if (o.job_list.empty()) throw UsageError("--run-job needs --job-list");
+  try {
+    const SweepFolder folder = open_sweep_folder(o.grid);
+    return run_sweep_task(folder, o.job_list, static_cast<std::size_t>(o.run_job), current_executable(), std::cout);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+}
+
+int sweep_command(const SweepOptions& o) {
+  if (o.run_job >= 0) return sweep_task_command(o);
+  Grid grid;
+  try {
+    grid = load_grid(o.grid);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  if (std::find(kBackends.begin(), kBackends.end(), o.backend) == kBackends.end())
+    throw UsageError("--backend: '" + o.backend + "' is not available; expected local or slurm");
+  const fs::path dir = o.out.empty() ? fs::path("results") / grid.name : fs::path(o.out);
+  SweepFolder folder = make_sweep_folder(dir, grid);
+  LocalSweepOptions options;
+  try {
+    options.selection = parse_selection(o.only, folder.grid, folder.graph);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  if (o.backend == "slurm") {
+    if (!o.job_timeout.empty()) throw UsageError("--job-timeout is for the local backend; with --backend slurm use --time");
+    return submit_to_slurm(o, folder, options.selection);
+  }
+  if (!o.job_timeout.empty()) options.job_timeout_s = parse_job_timeout(o.job_timeout);
+  if (o.slurm_option_given || o.dry_run)
+    throw UsageError("--partition, --time, --cpus-per-task, --array-parallelism, --sbatch-arg and --dry-run need --backend slurm");
+  options.workers = o.jobs > 0 ? o.jobs : grid.jobs.value_or(static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+  options.force = o.force;
+  options.binary = current_executable();
+  options.terminal = ::isatty(STDERR_FILENO) != 0;
+  options.progress = &std::cerr;
+
+  if (fs::exists(dir) && !fs::is_directory(dir)) throw UsageError("--out: '" + dir.string() + "' is not a folder");
+  fs::create_directories(dir);
+  const auto lock = lock_folder(dir);
+  update_grid_file(folder, std::cerr);
+
+  std::cerr << "rapid sweep: " << grid.name << " → " << dir.string() << " (" << options.workers << " worker"
+            << (options.workers == 1 ? "" : "s") << (o.only.empty() ? "" : ", only " + o.only)
+            << (o.force ? ", forced" : "") << ")\n";
+  const SweepReport report = run_local_sweep(folder, options);
+
+  std::size_t skipped = 0, ran = 0;
+  for (const JobReport& j : report.jobs) {
+    skipped += !j.ran && j.state == "ok";
+    ran += j.ran;
+  }
+  std::cout << "sweep " << dir.string() << ": " << report.count("ok") << " ok (" << skipped << " already done), "
+            << report.count("failed") << " failed, " << report.count("diverged") << " diverged, "
+            << report.count("blocked") << " blocked, " << report.count("not_run") << " not run; " << ran
+            << " jobs run, " << report.retries << " retries, " << format_duration(report.wall_s) << "\n";
+  for (const JobReport& j : report.jobs)
+    if (j.state == "failed" || j.state == "diverged" || j.state == "blocked")
+      std::cout << "  " << j.state << " " << j.id << ": " << j.error << "\n";
+  if (report.interrupted_by) return 130;
+  // Refresh the reports from whatever records exist (a partial sweep or an --only rerun too).
+  if (!o.no_summary) summarize_sweep(dir.string(), "", /*plots=*/true);
+  return report.all_ok() ? kExitOk : kExitFailed;
+}
+
+}  // namespace
+
+Command add_sweep_command(CLI::App& parent) {
+  auto o = std::make_shared<SweepOptions>();
+  CLI::App* sub = parent.add_subcommand("sweep", "Run a grid's jobs (reference agents, datasets, cells), resuming what is done");
+  sub->add_option("grid", o->grid, "grid file (experiments/grids/*.json)")->required();
+  sub->add_option("--jobs,-j", o->jobs, "worker processes (default: the grid's \"jobs\", else the number of cores)")
+      ->check(CLI::Range(1, 1024));
+  sub->add_option("--only", o->only, "run a subset: scenario=..,dataset=..,algo=..,seed=.. (repeat a key or use | for alternatives)");
+  sub->add_flag("--force", o->force, "rerun the selected jobs even if their records are ok");
+  sub->add_flag("--no-summary", o->no_summary, "do not refresh the reports (rapid summarize) at the end");
+  sub->add_option("--backend", o->backend, "where jobs run: local (this machine) or slurm (submit job arrays)");
+  sub->add_option("--out", o->out, "sweep folder (default: results/<grid name>)");
+  sub->add_option("--job-timeout", o->job_timeout,
+                  "local: stop a job that runs longer than this, e.g. 45m or 2h; it counts as a failed attempt");
+  const std::vector<CLI::Option*> slurm_only = {
+      sub->add_option("--partition", o->slurm.partition, "slurm: the partition (default: the cluster's default)"),
+      sub->add_option("--time", o->slurm.time, "slurm: time limit per job, e.g. 2:00:00 (default: the partition's)"),
+      sub->add_option("--cpus-per-task", o->slurm.cpus_per_task, "slurm: CPUs per job (default 1: jobs are single-threaded)")
+          ->check(CLI::Range(1, 1024)),
+      sub->add_option("--array-parallelism", o->slurm.array_parallelism,
+                      "slurm: at most this many tasks of an array run at once (default 32)")
+          ->check(CLI::Range(1, 1000000)),
+      sub->add_option("--sbatch-arg", o->slurm.sbatch_args, "slurm: one more sbatch option, e.g. --sbatch-arg=--mem=4G (repeatable)")
+          ->allow_extra_args(false),
+  };
+  sub->add_flag("--dry-run", o->dry_run, "slurm: print the sbatch scripts instead of submitting them");
+  sub->add_option("--run-job", o->run_job, "run job I of --job-list in the sweep folder given as GRID (an array task)")
+      ->group("")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--job-list", o->job_list, "the task list of --run-job, relative to the sweep folder")->group("");
+  return {sub, [o, slurm_only] {
+            for (const CLI::Option* opt : slurm_only) o->slurm_option_given = o->slurm_option_given || opt->count() > 0;
+            return sweep_command(*o);
+          }};
+}
+
+}  // namespace rapid

@@ -1,0 +1,29 @@
+// Each `rapid` subcommand lives in its own cmd_<name>.cpp and registers itself here: it adds its
+// CLI11 subcommand (options bound to state captured by `run`) and returns both.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace rapid {
+
+struct Command {
+  CLI::App* app;             // the subcommand; `run` is called when it was given
+  std::function<int()> run;  // returns the process exit code; may throw (see errors.hpp)
+};
+
+Command add_rollout_command(CLI::App& parent);
+Command add_dataset_command(CLI::App& parent);
+Command add_run_command(CLI::App& parent);
+Command add_sweep_command(CLI::App& parent);
+Command add_status_command(CLI::App& parent);
+Command add_summarize_command(CLI::App& parent);
+Command add_diff_command(CLI::App& parent);
+Command add_bench_command(CLI::App& parent);
+Command add_budget_command(CLI::App& parent);
+
+// `rapid summarize SWEEP_DIR [--out DIR]`, also run by `rapid sweep` when it ends: the reports
+// (and with `plots` the figures) into DIR, default the sweep folder. Returns the exit code.
+int summarize_sweep(const std::string& sweep_dir, const std::string& out_dir, bool plots);
+
+}  // namespace rapid

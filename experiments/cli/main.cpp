@@ -1,0 +1,48 @@
+// `rapid`: the harness's one command line. See docs/design.md §Command line and the README.
+#include <iostream>
+#include <vector>
+
+#include "experiments/cli/commands.hpp"
+#include "experiments/cli/errors.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"rapid: reproduction harness for RAPID-RL (selective imitation from prior data)"};
+  app.require_subcommand(1);
+  const std::vector<rapid::Command> commands = {
+      rapid::add_rollout_command(app),
+      rapid::add_dataset_command(app),
+      rapid::add_run_command(app),
+      rapid::add_sweep_command(app),
+      rapid::add_status_command(app),
+      rapid::add_summarize_command(app),
+      rapid::add_diff_command(app),
+      rapid::add_bench_command(app),
+      rapid::add_budget_command(app),
+  };
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "rapid: error: " << e.what() << "\n";
+    return rapid::kExitUsage;
+  }
+  for (const rapid::Command& command : commands) {
+    if (!command.app->parsed()) continue;
+    try {
+      return command.run();
+    } catch (const rapid::UsageError& e) {
+      std::cerr << "rapid: error: " << e.what() << "\n";
+      return rapid::kExitUsage;
+    } catch (const std::exception& e) {
+      std::cerr << "rapid: failed: " << e.what() << "\n";
+      return rapid::kExitFailed;
+    }
+  }
+  return rapid::kExitUsage;
+}

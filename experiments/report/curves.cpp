@@ -1,0 +1,50 @@
+#include "experiments/report/curves.hpp"
+
+#include <map>
+
+#include "core/statistics.hpp"
+
+namespace rapid {
+
+MeanCurve mean_curve(const std::vector<const nlohmann::json*>& records, const std::string& array,
+                     const std::string& x_key, const std::string& y_key) {
+  std::map<double, std::vector<double>> by_x;
+  for (const nlohmann::json* record : records) {
+    if (!record->contains(array) || !(*record)[array].is_array()) continue;
+    for (const nlohmann::json& point : (*record)[array]) {
+      if (!point.is_object() || !point.contains(x_key) || !point.contains(y_key)) continue;
+      const nlohmann::json &x = point[x_key], &y = point[y_key];
+      if (!x.is_number() || !y.is_number()) continue;
+      by_x[x.get<double>()].push_back(y.get<double>());
+    }
+  }
+  MeanCurve curve;
+  for (const auto& [x, ys] : by_x) {
+    curve.step.push_back(x);
+    curve.mean.push_back(mean(ys));
+    curve.std.push_back(population_std(ys));
+    curve.n.push_back(static_cast<int>(ys.size()));
+  }
+  return curve;
+}
+
+MeanCurve mean_eval_curve(const std::vector<const nlohmann::json*>& records) {
+  bool has_target = !records.empty();
+  for (const nlohmann::json* record : records) {
+    const auto& eval = record->contains("eval") ? (*record)["eval"] : nlohmann::json();
+    if (eval.is_array() && !eval.empty() && !eval.front().contains("target_step")) has_target = false;
+  }
+  return mean_curve(records, "eval", has_target ? "target_step" : "step", "return_mean");
+}
+
+std::optional<double> normalized_area(const MeanCurve& curve) {
+  if (curve.step.size() < 2) return std::nullopt;
+  const double range = curve.step.back() - curve.step.front();
+  if (!(range > 0)) return std::nullopt;
+  double area = 0.0;
+  for (std::size_t i = 1; i < curve.step.size(); ++i)
+    area += (curve.step[i] - curve.step[i - 1]) * (curve.mean[i] + curve.mean[i - 1]) / 2.0;
+  return area / range;
+}
+
+}  // namespace rapid

@@ -1,0 +1,28 @@
+// Curves of a cell averaged over its seeds: the evaluation return (Figure 2, claim C5) and the
+// BC losses (Figure 3(b), claim C6).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "experiments/report/summary.hpp"
+
+namespace rapid {
+
+// Groups the points of records[*][array] by their x value and gives mean, std and count of the y
+// values at each x, in increasing x. Points whose x or y is missing or null are skipped (prior BC
+// loss without a prior buffer), so a curve may be empty. Evaluation curves align on
+// "target_step": every seed evaluates at the same targets even if an episode overran one.
+MeanCurve mean_curve(const std::vector<const nlohmann::json*>& records, const std::string& array,
+                     const std::string& x_key, const std::string& y_key);
+
+// The evaluation curve's x: "target_step" where the records have it, else "step".
+MeanCurve mean_eval_curve(const std::vector<const nlohmann::json*>& records);
+
+// Trapezoid area under the mean curve divided by its step range (a step-weighted average return);
+// nullopt with fewer than two points.
+std::optional<double> normalized_area(const MeanCurve& curve);
+
+}  // namespace rapid

@@ -1,0 +1,65 @@
+#include "experiments/report/format.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "algos/registry.hpp"
+
+namespace rapid {
+
+std::string fixed(double x, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, x);
+  std::string s = buf;
+  if (s.find_first_not_of("-0.") == std::string::npos && s.front() == '-') s.erase(0, 1);  // no "-0.0"
+  return s;
+}
+
+std::string short_number(std::optional<double> x) {
+  if (!x || std::isnan(*x)) return "—";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.4g", *x);
+  return buf;
+}
+
+std::string exact_number(std::optional<double> x) {
+  if (!x || std::isnan(*x)) return "";
+  char buf[64];
+  const auto result = std::to_chars(buf, buf + sizeof buf, *x);
+  return std::string(buf, result.ptr);
+}
+
+int table_decimals(double magnitude) {
+  if (magnitude >= 100.0) return 1;
+  if (magnitude >= 1.0) return 2;
+  return 3;
+}
+
+namespace {
+std::string lookup(const std::map<std::string, std::string>& names, const std::string& key) {
+  const auto it = names.find(key);
+  return it == names.end() ? key : it->second;
+}
+}  // namespace
+
+std::string algo_display_name(const std::string& algo) {
+  for (const Algorithm& a : algorithms())
+    if (a.name == algo) return a.display_name;
+  return algo;
+}
+
+std::string dataset_display_name(const std::string& dataset) {
+  static const std::map<std::string, std::string> names = {
+      {"initial", "Initial"}, {"medium", "Medium"}, {"final", "Final"}, {"final+medium", "Final+Medium"}};
+  return lookup(names, dataset);
+}
+
+std::string scenario_display_name(const std::string& scenario) {
+  static const std::map<std::string, std::string> names = {
+      {"lane-drop", "Lane-drop"}, {"cut-in", "Cut-in"}, {"merge", "Merge"}, {"pendulum", "Pendulum"}};
+  return lookup(names, scenario);
+}
+
+}  // namespace rapid

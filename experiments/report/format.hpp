@@ -1,0 +1,27 @@
+// Number formatting shared by the reports and the claims check, so a value reads the same in
+// table.md, table.tex and claims.md.
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace rapid {
+
+// Fixed decimals ("939.7").
+std::string fixed(double x, int decimals);
+// Four significant digits for claim tables ("939.7", "0.01234", "1.235e+05"); "—" for nullopt/NaN.
+std::string short_number(std::optional<double> x);
+// Shortest text that reads back as the same double (CSV, machine use); empty for nullopt/NaN.
+std::string exact_number(std::optional<double> x);
+
+// Decimals for a table whose largest |mean| is `magnitude`: 1 from 100 up (as the paper), 2 from
+// 1, else 3, so small-scale returns (pendulum, smoke runs) still show their differences.
+int table_decimals(double magnitude);
+
+// Display names as the paper prints them: "RAPID-RL", "CoL-prior", "Final+Medium", "Lane-drop";
+// an algorithm's comes from its registry row (algos/registry.cpp).
+std::string algo_display_name(const std::string& algo);
+std::string dataset_display_name(const std::string& dataset);
+std::string scenario_display_name(const std::string& scenario);
+
+}  // namespace rapid

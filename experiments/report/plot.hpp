@@ -1,0 +1,26 @@
+// Running scripts/plot (matplotlib, Figures 2 and 3) after `rapid summarize`. Plots are drawn by
+// Debian's /usr/bin/python3 (not a pyenv shim, whose python may lack matplotlib); RAPID_PYTHON overrides the interpreter.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace rapid {
+
+// scripts/plot from the source tree this binary was built from, else next to the binary
+// (BIN_DIR/scripts/plot or BIN_DIR/../scripts/plot); nullopt if none exists.
+std::optional<std::filesystem::path> find_plot_script();
+
+// The interpreter: $RAPID_PYTHON if set, else /usr/bin/python3.
+std::string plot_python();
+
+// Whether the interpreter runs and can import matplotlib.
+bool python_has_matplotlib(const std::string& python);
+
+// Runs PYTHON SCRIPT --summary SUMMARY_JSON --out OUT_DIR; returns its exit code (-1 when it could
+// not be started or was killed).
+int run_plot_script(const std::string& python, const std::filesystem::path& script,
+                    const std::filesystem::path& summary_json, const std::filesystem::path& out_dir);
+
+}  // namespace rapid

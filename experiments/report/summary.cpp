@@ -1,0 +1,21 @@
+#include "experiments/report/summary.hpp"
+
+namespace rapid {
+
+std::string CellSummary::key() const {
+  return scenario + "/" + (dataset.empty() ? "none" : dataset) + "/" + algo;
+}
+
+const CellSummary* Summary::find(const std::string& scenario, const std::string& dataset, const std::string& algo) const {
+  for (const CellSummary& c : cells)
+    if (c.scenario == scenario && c.dataset == dataset && c.algo == algo) return &c;
+  return nullptr;
+}
+
+const CellSummary* Summary::column_cell(const TableRow& row, const std::string& algo) const {
+  for (const auto& [name, index] : row.cells)
+    if (name == algo) return &cells[index];
+  return nullptr;
+}
+
+}  // namespace rapid

@@ -1,0 +1,125 @@
+// The summary of a sweep (docs/reports.md), as summarize.hpp reads it from the sweep folder: every
+// table cell's per-seed results from the run records, the statistics over seeds, the curves behind
+// Figures 2 and 3(b), the prior datasets' statistics behind Figure 3(a), and the claims check.
+// Everything the reports, `rapid diff` and scripts/plot need, so none of them reads records on its
+// own.
+//
+// Cells are keyed as the job graph has them: (scenario, dataset, algo) with an empty dataset for
+// ddpg, whose one cell per scenario appears in every dataset row of the table (as in the paper).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/statistics.hpp"
+#include "experiments/sweep/grid.hpp"
+
+namespace rapid {
+
+inline constexpr const char* kSummarySchema = "rapid.summary/1";
+
+// What became of one seed of a cell. status: ok | failed | diverged | missing (no record yet) |
+// stale (its config hash no longer matches the grid) | corrupt (unreadable record).
+struct SeedResult {
+  std::uint64_t seed = 0;
+  std::string status;
+  std::optional<double> final_return;  // final.return_mean of an ok record
+  std::string error;                   // one line for anything but ok
+};
+
+// A curve averaged over the ok seeds at each step; n = how many seeds had a point there.
+struct MeanCurve {
+  std::vector<double> step, mean, std;
+  std::vector<int> n;
+  bool empty() const { return step.empty(); }
+};
+
+struct CellSummary {
+  std::string scenario, dataset, algo;  // dataset empty for ddpg
+  std::vector<SeedResult> seeds;        // one per grid seed, in grid order
+  int n_ok = 0;
+  int n_expected = 0;
+  std::map<std::string, int> statuses;  // status → count
+  std::vector<double> finals;           // final returns of the ok seeds
+  std::optional<double> mean, std, iqm;
+  std::optional<Interval> mean_ci, iqm_ci;
+  MeanCurve eval;                       // return_mean over target_step
+  MeanCurve bc_prior, bc_online;        // rapid-rl and other prior algorithms; prior empty without one
+  std::optional<double> eval_auc;       // area under the mean eval curve / step range
+  std::string key() const;              // "merge/initial/rapid-rl", "merge/none/ddpg"
+};
+
+// One row of Table I: a scenario × dataset and the cell index of each algorithm column.
+struct TableRow {
+  std::string scenario, dataset;
+  std::vector<std::pair<std::string, std::size_t>> cells;  // (algo, index into Summary::cells)
+  std::optional<std::string> best;  // the algorithm with the highest mean (ties: the first column)
+};
+
+struct PoiEntry {
+  std::string scenario, dataset, baseline;
+  double p = 0.0;
+  std::optional<Interval> ci;
+  int n_x = 0, n_y = 0;
+};
+
+struct AggregateEntry {
+  std::string algo;
+  double iqm = 0.0;
+  Interval ci;
+  int n_runs = 0, n_cells = 0;
+};
+
+struct DatasetSummary {
+  std::string scenario, dataset;
+  bool present = false;
+  std::string error;       // why it could not be read
+  nlohmann::json stats;    // transitions, episodes, return/reward mean/std, reward_histogram
+};
+
+struct ClaimResult {
+  std::string id;           // C1 … C6
+  std::string statement;    // the paper's claim in one line
+  std::string definition;   // exactly what is checked
+  std::string verdict;      // PASS | FAIL | N/A
+  std::string reason;       // one line: the numbers that decided it, or what is missing
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+};
+
+struct BootstrapSettings {
+  int cell_replicates = 10000;
+  int aggregate_replicates = 50000;
+  int poi_replicates = 2000;
+  std::uint64_t seed = 0x5eed'5a3a'0000'0001ULL;
+  double confidence = 0.95;
+};
+
+struct Summary {
+  std::filesystem::path sweep_dir;
+  Grid grid;
+  BootstrapSettings bootstrap;
+  std::vector<CellSummary> cells;  // ordered by scenario, dataset, algorithm (table order)
+  std::vector<TableRow> rows;
+  std::vector<PoiEntry> poi;       // P(rapid-rl > baseline) per row
+  std::vector<AggregateEntry> aggregate;
+  std::map<std::string, double> epsilon;  // per scenario
+  std::map<std::string, nlohmann::json> reference;  // per scenario: the reference agent's final result
+  std::vector<DatasetSummary> datasets;
+  std::vector<ClaimResult> claims;
+  std::vector<std::string> warnings;  // printed by `rapid summarize`
+
+  const CellSummary* find(const std::string& scenario, const std::string& dataset, const std::string& algo) const;
+  // The cell shown in a row's column: the dataset's cell, or the scenario's ddpg cell.
+  const CellSummary* column_cell(const TableRow& row, const std::string& algo) const;
+};
+
+// summary.json ("rapid.summary/1", see docs/reports.md).
+nlohmann::json summary_to_json(const Summary& summary);
+
+}  // namespace rapid

@@ -1,0 +1,107 @@
+// summary_to_json: the "rapid.summary/1" document (field by field in docs/reports.md).
+#include <cmath>
+
+#include "experiments/report/summary.hpp"
+
+#include "experiments/run/json_numbers.hpp"
+
+namespace rapid {
+
+namespace {
+
+nlohmann::json dataset_name(const std::string& d) { return d.empty() ? nlohmann::json(nullptr) : nlohmann::json(d); }
+
+nlohmann::json curve_json(const MeanCurve& c) {
+  return {{"step", c.step}, {"mean", c.mean}, {"std", c.std}, {"n", c.n}};
+}
+
+nlohmann::json cell_json(const CellSummary& c) {
+  nlohmann::json seeds = nlohmann::json::array();
+  for (const SeedResult& r : c.seeds)
+    seeds.push_back({{"seed", r.seed}, {"status", r.status}, {"final", json_number(r.final_return)},
+                     {"error", r.error.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.error)}});
+  return {{"scenario", c.scenario},
+          {"dataset", dataset_name(c.dataset)},
+          {"algo", c.algo},
+          {"n_ok", c.n_ok},
+          {"n_expected", c.n_expected},
+          {"statuses", c.statuses},
+          {"seeds", seeds},
+          {"finals", c.finals},
+          {"mean", json_number(c.mean)},
+          {"std", json_number(c.std)},
+          {"mean_ci", json_interval(c.mean_ci)},
+          {"iqm", json_number(c.iqm)},
+          {"iqm_ci", json_interval(c.iqm_ci)},
+          {"eval_auc", json_number(c.eval_auc)},
+          {"eval_curve", curve_json(c.eval)},
+          {"bc_prior_curve", curve_json(c.bc_prior)},
+          {"bc_online_curve", curve_json(c.bc_online)}};
+}
+
+nlohmann::json claim_json(const ClaimResult& c) {
+  return {{"id", c.id},         {"statement", c.statement}, {"definition", c.definition},
+          {"verdict", c.verdict}, {"reason", c.reason},     {"header", c.header},
+          {"rows", c.rows}};
+}
+
+}  // namespace
+
+nlohmann::json summary_to_json(const Summary& s) {
+  nlohmann::json j;
+  j["schema"] = kSummarySchema;
+  j["grid"] = {{"name", s.grid.name},   {"scenarios", s.grid.scenarios}, {"datasets", s.grid.datasets},
+               {"algos", s.grid.algos}, {"seeds", s.grid.seeds}};
+  j["statistics"] = {{"std", "population (ddof=0) over the ok seeds"},
+                     {"iqm", "scipy.stats.trim_mean(x, 0.25)"},
+                     {"interval", "percentile, stratified bootstrap"},
+                     {"confidence", s.bootstrap.confidence},
+                     {"bootstrap_seed", s.bootstrap.seed},
+                     {"replicates", {{"cell", s.bootstrap.cell_replicates},
+                                     {"aggregate", s.bootstrap.aggregate_replicates},
+                                     {"probability_of_improvement", s.bootstrap.poi_replicates}}}};
+  std::map<std::string, int> counts;
+  for (const CellSummary& c : s.cells)
+    for (const auto& [status, n] : c.statuses) counts[status] += n;
+  j["status_counts"] = counts;
+
+  j["cells"] = nlohmann::json::array();
+  for (const CellSummary& c : s.cells) j["cells"].push_back(cell_json(c));
+
+  j["table"] = nlohmann::json::array();
+  for (const TableRow& row : s.rows) {
+    nlohmann::json columns = nlohmann::json::array();
+    for (const auto& [algo, index] : row.cells) columns.push_back({{"algo", algo}, {"cell", s.cells[index].key()}});
+    j["table"].push_back({{"scenario", row.scenario}, {"dataset", row.dataset}, {"columns", columns},
+                          {"best", row.best ? nlohmann::json(*row.best) : nlohmann::json(nullptr)}});
+  }
+
+  j["probability_of_improvement"] = nlohmann::json::array();
+  for (const PoiEntry& p : s.poi)
+    j["probability_of_improvement"].push_back({{"scenario", p.scenario}, {"dataset", p.dataset}, {"algo", "rapid-rl"},
+                                               {"baseline", p.baseline}, {"p", json_number(p.p)}, {"ci", json_interval(p.ci)},
+                                               {"n_x", p.n_x}, {"n_y", p.n_y}});
+  j["aggregate_iqm"] = nlohmann::json::array();
+  for (const AggregateEntry& a : s.aggregate)
+    j["aggregate_iqm"].push_back({{"algo", a.algo}, {"iqm", a.iqm}, {"ci", {a.ci.lo, a.ci.hi}},
+                                  {"n_runs", a.n_runs}, {"n_cells", a.n_cells}});
+
+  nlohmann::json scenarios = nlohmann::json::object();
+  for (const std::string& scenario : s.grid.scenarios) {
+    nlohmann::json entry = {{"epsilon", s.epsilon.count(scenario) ? nlohmann::json(s.epsilon.at(scenario)) : nlohmann::json(nullptr)},
+                            {"reference", s.reference.count(scenario) ? s.reference.at(scenario) : nlohmann::json(nullptr)},
+                            {"datasets", nlohmann::json::object()}};
+    for (const DatasetSummary& d : s.datasets) {
+      if (d.scenario != scenario) continue;
+      entry["datasets"][d.dataset] = d.present ? d.stats : nlohmann::json{{"missing", true}, {"error", d.error}};
+    }
+    scenarios[scenario] = entry;
+  }
+  j["scenarios"] = scenarios;
+
+  j["claims"] = nlohmann::json::array();
+  for (const ClaimResult& c : s.claims) j["claims"].push_back(claim_json(c));
+  return j;
+}
+
+}  // namespace rapid

@@ -1,0 +1,188 @@
+#include "experiments/report/tables.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "algos/registry.hpp"
+#include "experiments/report/format.hpp"
+
+namespace rapid {
+
+namespace {
+
+std::vector<std::string> columns(const Summary& s) {
+  std::vector<std::string> out;
+  for (const std::string& a : algo_names())
+    if (std::find(s.grid.algos.begin(), s.grid.algos.end(), a) != s.grid.algos.end()) out.push_back(a);
+  return out;
+}
+
+int decimals_for(const Summary& s) {
+  double magnitude = 0.0;
+  for (const CellSummary& c : s.cells)
+    if (c.mean) magnitude = std::max(magnitude, std::abs(*c.mean));
+  return table_decimals(magnitude);
+}
+
+std::string count_note(const CellSummary& c) {
+  return "(n=" + std::to_string(c.n_ok) + "/" + std::to_string(c.n_expected) + ")";
+}
+
+// "mean ± std", with the seed count when seeds are missing; `pm` and `dash` are the format's
+// spelling of ± and —.
+std::string cell_text(const CellSummary* c, int decimals, const std::string& pm, const std::string& dash,
+                      const std::string& note_prefix = " ", const std::string& note_suffix = "") {
+  if (!c) return "";
+  if (!c->mean) return dash + note_prefix + count_note(*c) + note_suffix;
+  std::string text = fixed(*c->mean, decimals) + pm + fixed(*c->std, decimals);
+  if (c->n_ok < c->n_expected) text += note_prefix + count_note(*c) + note_suffix;
+  return text;
+}
+
+int total_expected(const Summary& s) {
+  int n = 0;
+  for (const CellSummary& c : s.cells) n += c.n_expected;
+  return n;
+}
+
+std::string status_line(const Summary& s) {
+  std::map<std::string, int> counts;
+  for (const CellSummary& c : s.cells)
+    for (const auto& [status, n] : c.statuses) counts[status] += n;
+  std::string line;
+  for (const auto& [status, n] : counts) line += (line.empty() ? "" : ", ") + std::to_string(n) + " " + status;
+  return line;
+}
+
+std::string latex_escape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '_' || c == '&' || c == '%' || c == '#' || c == '$') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string table_markdown(const Summary& s) {
+  const int decimals = decimals_for(s);
+  std::ostringstream out;
+  out << "# Table I — grid `" << s.grid.name << "`\n\n"
+      << "Final return (mean of the last evaluations of each run), mean ± std over seeds; **bold** is the best mean of "
+         "the row. `(n=k/N)`: only k of the N seeds finished ok (failed, diverged, missing or stale runs are not "
+         "averaged in); `—`: no seed finished ok. DDPG uses no dataset: its value repeats in each row of its "
+         "scenario.\n\n"
+      << "Jobs: " << total_expected(s) << " runs, " << status_line(s) << ".\n\n";
+  const auto algos = columns(s);
+  out << "| Scenario | Dataset |";
+  for (const auto& a : algos) out << " " << algo_display_name(a) << " |";
+  out << "\n|---|---|";
+  for (std::size_t i = 0; i < algos.size(); ++i) out << "---:|";
+  out << "\n";
+  for (const TableRow& row : s.rows) {
+    out << "| " << scenario_display_name(row.scenario) << " | " << dataset_display_name(row.dataset) << " |";
+    for (const auto& a : algos) {
+      const std::string text = cell_text(s.column_cell(row, a), decimals, " ± ", "—");
+      const bool best = row.best && *row.best == a;
+      out << " " << (best ? "**" + text + "**" : text) << " |";
+    }
+    out << "\n";
+  }
+
+  if (!s.poi.empty()) {
+    out << "\n## Probability that RAPID-RL beats each baseline\n\n"
+        << "P(X > Y) over the ok seeds (Mann–Whitney U / (n_x·n_y), ties count half), 95% stratified-bootstrap "
+           "interval in brackets.\n\n| Scenario | Dataset |";
+    std::vector<std::string> baselines;
+    for (const auto& a : algos)
+      if (a != "rapid-rl") baselines.push_back(a);
+    for (const auto& b : baselines) out << " vs " << algo_display_name(b) << " |";
+    out << "\n|---|---|";
+    for (std::size_t i = 0; i < baselines.size(); ++i) out << "---:|";
+    out << "\n";
+    for (const TableRow& row : s.rows) {
+      out << "| " << scenario_display_name(row.scenario) << " | " << dataset_display_name(row.dataset) << " |";
+      for (const auto& b : baselines) {
+        const auto it = std::find_if(s.poi.begin(), s.poi.end(), [&](const PoiEntry& p) {
+          return p.scenario == row.scenario && p.dataset == row.dataset && p.baseline == b;
+        });
+        if (it == s.poi.end() || std::isnan(it->p)) out << " — |";
+        else
+          out << " " << fixed(it->p, 2) << (it->ci ? " [" + fixed(it->ci->lo, 2) + ", " + fixed(it->ci->hi, 2) + "]" : "") << " |";
+      }
+      out << "\n";
+    }
+  }
+  if (!s.aggregate.empty()) {
+    out << "\n## IQM per algorithm over all cells\n\n"
+        << "Interquartile mean of every ok run's final return, 95% stratified-bootstrap interval (strata = cells). "
+           "Returns are not normalised across scenarios.\n\n| Algorithm | IQM | 95% CI | runs | cells |\n|---|---:|---:|---:|---:|\n";
+    for (const AggregateEntry& a : s.aggregate)
+      out << "| " << algo_display_name(a.algo) << " | " << fixed(a.iqm, decimals) << " | [" << fixed(a.ci.lo, decimals)
+          << ", " << fixed(a.ci.hi, decimals) << "] | " << a.n_runs << " | " << a.n_cells << " |\n";
+  }
+  return out.str();
+}
+
+std::string table_latex(const Summary& s) {
+  const int decimals = decimals_for(s);
+  const auto algos = columns(s);
+  std::ostringstream out;
+  out << "% Table I from the sweep grid '" << s.grid.name << "' (written by `rapid summarize`).\n"
+      << "% Needs \\usepackage{booktabs} and \\usepackage[table]{xcolor} (for \\cellcolor).\n"
+      << "\\begin{table}[t]\n\\centering\n"
+      << "\\caption{The average final performance and one standard deviation over seeds of each algorithm across the "
+         "driving scenarios and datasets. The cyan-shaded cell is the highest mean of each row; (n=k/N) marks cells "
+         "where only k of N seeds finished.}\n"
+      << "\\begin{tabular}{ll" << std::string(algos.size(), 'c') << "}\n\\toprule\nScenario & Dataset";
+  for (const auto& a : algos) out << " & " << algo_display_name(a);
+  out << " \\\\\n";
+  std::string previous;
+  for (const TableRow& row : s.rows) {
+    const bool first = row.scenario != previous;
+    previous = row.scenario;
+    if (first) out << "\\midrule\n" << latex_escape(scenario_display_name(row.scenario));
+    out << " & " << dataset_display_name(row.dataset);
+    for (const auto& a : algos) {
+      const CellSummary* c = s.column_cell(row, a);
+      std::string text;
+      if (c && c->mean) {
+        // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "literal" + temporary.
+        text.append("$").append(fixed(*c->mean, decimals)).append(" \\pm ").append(fixed(*c->std, decimals)).append("$");
+        if (c->n_ok < c->n_expected) text.append(" {\\scriptsize ").append(count_note(*c)).append("}");
+      } else if (c) {
+        text.append("--- {\\scriptsize ").append(count_note(*c)).append("}");
+      }
+      if (row.best && *row.best == a) text.insert(0, "\\cellcolor{cyan!15}");
+      out << " & " << text;
+    }
+    out << " \\\\\n";
+  }
+  out << "\\bottomrule\n\\end{tabular}\n\\end{table}\n";
+  return out.str();
+}
+
+std::string table_csv(const Summary& s) {
+  const auto algos = columns(s);
+  std::ostringstream out;
+  out << "scenario,dataset";
+  for (const auto& a : algos) out << "," << a << "_mean," << a << "_std," << a << "_n_ok," << a << "_n_expected";
+  out << ",best\n";
+  for (const TableRow& row : s.rows) {
+    out << row.scenario << "," << row.dataset;
+    for (const auto& a : algos) {
+      const CellSummary* c = s.column_cell(row, a);
+      if (!c) {
+        out << ",,,,";
+        continue;
+      }
+      out << "," << exact_number(c->mean) << "," << exact_number(c->std) << "," << c->n_ok << "," << c->n_expected;
+    }
+    out << "," << row.best.value_or("") << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace rapid

@@ -1,0 +1,19 @@
+// Table I as Markdown, LaTeX (booktabs) and CSV (docs/reports.md). Rows are scenario × dataset, columns
+// the grid's algorithms in the paper's order, a cell is "mean ± std" over the ok seeds of the
+// final return. A cell short of seeds says so ("112.3 ± 4.1 (n=2/3)"); one with no ok seed shows
+// "—" and its count. The best mean of each row is bold (Markdown) or shaded cyan (LaTeX).
+#pragma once
+
+#include <string>
+
+#include "experiments/report/summary.hpp"
+
+namespace rapid {
+
+std::string table_markdown(const Summary& summary);
+std::string table_latex(const Summary& summary);
+// One line per row: scenario,dataset, then per algorithm mean,std,n_ok,n_expected (exact
+// numbers, empty when there is no ok seed), then the best algorithm.
+std::string table_csv(const Summary& summary);
+
+}  // namespace rapid

@@ -1,0 +1,52 @@
+#include "experiments/report/write_reports.hpp"
+
+#include <iostream>
+
+#include "core/atomic_file.hpp"
+#include "experiments/report/claims_markdown.hpp"
+#include "experiments/report/plot.hpp"
+#include "experiments/report/tables.hpp"
+
+namespace rapid {
+
+namespace fs = std::filesystem;
+
+void write_reports(const Summary& summary, const fs::path& out_dir, std::ostream& out) {
+  write_file_atomic((out_dir / "table.md").string(), table_markdown(summary));
+  write_file_atomic((out_dir / "table.tex").string(), table_latex(summary));
+  write_file_atomic((out_dir / "table.csv").string(), table_csv(summary));
+  write_file_atomic((out_dir / "summary.json").string(), summary_to_json(summary).dump(1) + "\n");
+  write_file_atomic((out_dir / "claims.md").string(), claims_markdown(summary));
+
+  int ok = 0, expected = 0;
+  for (const CellSummary& c : summary.cells) {
+    ok += c.n_ok;
+    expected += c.n_expected;
+  }
+  out << "summarized " << summary.cells.size() << " cells (" << ok << "/" << expected << " runs ok) into "
+      << out_dir.string() << ": table.md table.tex table.csv summary.json claims.md\n";
+  for (const std::string& w : summary.warnings) out << "warning: " << w << "\n";
+  for (const ClaimResult& c : summary.claims) out << "  " << c.id << " " << c.verdict << ": " << c.reason << "\n";
+}
+
+bool draw_figures(const fs::path& out_dir, std::ostream& out) {
+  const auto script = find_plot_script();
+  if (!script) {
+    out << "figures skipped: scripts/plot not found\n";
+    return true;
+  }
+  const std::string python = plot_python();
+  if (!python_has_matplotlib(python)) {
+    out << "figures skipped: " << python << " has no matplotlib (install python3-matplotlib)\n";
+    return true;
+  }
+  out.flush();  // the script writes to the same stdout
+  const int code = run_plot_script(python, *script, out_dir / "summary.json", out_dir);
+  if (code != 0) {
+    std::cerr << "rapid summarize: scripts/plot failed (exit " << code << "); the tables and summary.json are written\n";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace rapid

@@ -1,0 +1,212 @@
+#include "experiments/run/config_keys.hpp"
+
+#include "envs/env.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <type_traits>
+
+
+namespace rapid {
+
+namespace {
+
+constexpr Bounds kAny{};
+constexpr Bounds kPositive{.lo = 0, .lo_open = true};
+constexpr Bounds kNonNegative{.lo = 0};
+constexpr Bounds at_least(double x) { return {.lo = x}; }
+
+[[noreturn]] void reject(const std::string& key, const std::string& problem) {
+  throw std::invalid_argument("config key '" + key + "' " + problem);
+}
+
+// The JSON value in the type of the key's field, or a message naming that type.
+template <typename T>
+T typed(const std::string& key, const nlohmann::json& v) {
+  if constexpr (std::is_floating_point_v<T>) {
+    if (!v.is_number()) reject(key, "expects a number, got " + v.dump());
+    if (!std::isfinite(v.get<double>())) reject(key, "expects a finite number, got " + v.dump());
+  } else if constexpr (std::is_integral_v<T>) {
+    if (!v.is_number_integer()) reject(key, "expects an integer, got " + v.dump());
+  } else {
+    static_assert(std::is_same_v<T, std::vector<int>>);
+    if (!v.is_array()) reject(key, "expects a list of integers, got " + v.dump());
+    for (const auto& e : v)
+      if (!e.is_number_integer()) reject(key, "expects a list of integers, got " + v.dump());
+    if (v.empty()) reject(key, "needs at least one entry");
+  }
+  return v.get<T>();
+}
+
+template <typename T>
+const char* type_name() {
+  if constexpr (std::is_floating_point_v<T>) return "number";
+  else if constexpr (std::is_integral_v<T>) return "integer";
+  else return "list of integers";
+}
+
+void check_bounds(const std::string& key, const Bounds& bounds, double x, const nlohmann::json& v) {
+  if (!bounds.contains(x)) reject(key, "must be " + bounds.text() + ", got " + v.dump());
+}
+
+void check_bounds(const std::string& key, const Bounds& bounds, const std::vector<int>& xs, const nlohmann::json& v) {
+  for (int x : xs)
+    if (!bounds.contains(x)) reject(key, "entries must each be " + bounds.text() + ", got " + v.dump());
+}
+
+// The struct that holds a field decides the part the key configures.
+template <typename Holder>
+constexpr ConfigPart part_of() {
+  if constexpr (std::is_same_v<Holder, AgentConfig>) return ConfigPart::kAgent;
+  else if constexpr (std::is_same_v<Holder, ScenarioSettings>) return ConfigPart::kScenario;
+  else {
+    static_assert(std::is_same_v<Holder, RunConfig>);
+    return ConfigPart::kSchedule;
+  }
+}
+
+template <typename Holder, typename Config>
+auto& holder(Config& config) {
+  if constexpr (std::is_same_v<Holder, AgentConfig>) return config.agent;
+  else if constexpr (std::is_same_v<Holder, ScenarioSettings>) return config.scenario;
+  else return config;
+}
+
+bool driving(const std::string& scenario) { return is_driving_scenario(scenario); }
+bool merge_only(const std::string& scenario) { return scenario == "merge"; }
+bool cut_in_only(const std::string& scenario) { return scenario == "cut-in"; }
+
+// A row: the key's name, its field, the values it accepts and what it means.
+template <typename T, typename Holder>
+ConfigKey key(std::string name, T Holder::*field, Bounds bounds, std::string doc,
+              bool (*for_scenario)(const std::string&) = nullptr) {
+  ConfigKey k{name, part_of<Holder>(), type_name<T>(), bounds, std::move(doc), for_scenario, {}, {}};
+  k.read = [name, field, bounds](const nlohmann::json& v, RunConfig& config) {
+    const T x = typed<T>(name, v);
+    check_bounds(name, bounds, x, v);
+    holder<Holder>(config).*field = x;
+  };
+  k.write = [field](const RunConfig& config) { return nlohmann::json(holder<Holder>(config).*field); };
+  return k;
+}
+
+// A row whose value is one of a few names.
+ConfigKey choice_key(std::string name, std::string ScenarioSettings::*field, const std::vector<std::string>& choices,
+                     std::string doc) {
+  std::string list;
+  for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
+  ConfigKey k{name, ConfigPart::kScenario, "one of " + list, kAny, std::move(doc), driving, {}, {}};
+  k.read = [name, field, choices, list](const nlohmann::json& v, RunConfig& config) {
+    if (!v.is_string() || std::find(choices.begin(), choices.end(), v.get<std::string>()) == choices.end())
+      reject(name, "expects one of " + list + ", got " + v.dump());
+    config.scenario.*field = v.get<std::string>();
+  };
+  k.write = [field](const RunConfig& config) { return nlohmann::json(config.scenario.*field); };
+  return k;
+}
+
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
+}  // namespace
+
+const char* part_name(ConfigPart part) {
+  switch (part) {
+    case ConfigPart::kAgent: return "agent";
+    case ConfigPart::kSchedule: return "schedule";
+    case ConfigPart::kScenario: return "scenario";
+  }
+  return "?";
+}
+
+bool Bounds::contains(double x) const {
+  return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
+}
+
+std::string Bounds::text() const {
+  const bool no_lo = lo == -std::numeric_limits<double>::infinity();
+  const bool no_hi = hi == std::numeric_limits<double>::infinity();
+  if (no_lo && no_hi) return "";
+  if (no_hi) {
+    if (lo == 0) return lo_open ? "positive" : "≥ 0";
+    return (lo_open ? "above " : "at least ") + number(lo);
+  }
+  if (no_lo) return (hi_open ? "below " : "at most ") + number(hi);
+  return std::string("in ") + (lo_open ? "(" : "[") + number(lo) + ", " + number(hi) + (hi_open ? ")" : "]");
+}
+
+std::string ConfigKey::accepts() const {
+  const std::string b = bounds.text();
+  if (b.empty()) return type;
+  return type + (type.starts_with("list") ? ", each " : ", ") + b;
+}
+
+const std::vector<ConfigKey>& config_keys() {
+  static const std::vector<ConfigKey> keys = {
+      key("actor_hidden", &AgentConfig::actor_hidden, kPositive, "hidden layer widths of the actor (tanh output)"),
+      key("critic_hidden", &AgentConfig::critic_hidden, kPositive,
+          "hidden layer widths of the critic, LayerNorm after each"),
+      key("actor_lr", &AgentConfig::actor_lr, kPositive, "Adam learning rate of the actor"),
+      key("critic_lr", &AgentConfig::critic_lr, kPositive, "Adam learning rate of the critic"),
+      key("gamma", &AgentConfig::gamma, {.lo = 0, .hi = 1, .hi_open = true}, "discount factor γ"),
+      key("tau", &AgentConfig::tau, {.lo = 0, .hi = 1, .lo_open = true}, "Polyak rate τ of the target networks"),
+      key("batch_size", &AgentConfig::batch_size, at_least(2),
+          "batch size B; with a prior dataset B/2 prior + B/2 online"),
+      key("noise_std", &AgentConfig::noise_std, kNonNegative,
+          "std of the Gaussian exploration noise added to the [-1, 1] action"),
+      key("lambda_bc", &AgentConfig::lambda_bc, kNonNegative, "CoL's imitation weight λ_BC"),
+      key("epsilon", &AgentConfig::epsilon, kAny,
+          "RAPID-RL's reward threshold ε, in the scenario's reward units (docs/scenarios.md)"),
+      key("steps", &RunConfig::steps, kPositive, "environment decisions of training"),
+      key("warmup_steps", &RunConfig::warmup_steps, kNonNegative,
+          "decisions of uniform-random actions, without updates, before learning starts"),
+      key("eval_every", &RunConfig::eval_every, kPositive,
+          "evaluate at the first episode boundary after every multiple of this many decisions"),
+      key("eval_episodes", &RunConfig::eval_episodes, kPositive,
+          "episodes per evaluation: deterministic policy, fixed evaluation seeds"),
+      key("last_k", &RunConfig::last_k, kPositive, "final performance = mean of the last K evaluations"),
+      key("bc_log_every", &RunConfig::bc_log_every, kPositive,
+          "decisions per point of the logged loss curves (mean over the window's updates)"),
+      key("buffer_capacity", &RunConfig::buffer_capacity, kPositive,
+          "capacity of the online replay buffer (a run stores at most `steps` transitions)"),
+      choice_key("network", &ScenarioSettings::network, network_variants(),
+                 "road geometry: the short road or the 4.5 km long one (docs/scenarios.md)"),
+      key("action_repeat", &ScenarioSettings::action_repeat, {.lo = 1, .hi = 50},
+          "SUMO steps of 0.1 s per decision", driving),
+      key("horizon", &ScenarioSettings::horizon, {.lo = 1, .hi = 100000}, "decisions per episode", driving),
+      key("lane_change_interval", &ScenarioSettings::lane_change_interval, {.lo = 0, .hi = 10000},
+          "decisions the ego waits between two lane changes", driving),
+      key("traffic_warmup", &ScenarioSettings::traffic_warmup, {.lo = 0, .hi = 100000},
+          "SUMO steps of traffic before the ego enters (plus a random 0 to 50)", driving),
+      key("max_depart_delay", &ScenarioSettings::max_depart_delay, {.lo = -1, .hi = 3600},
+          "seconds a vehicle may queue to enter before SUMO drops it; -1: no limit", driving),
+      key("desired_speed", &ScenarioSettings::desired_speed, {.lo = 1, .hi = 35},
+          "v_des of the reward, m/s (SUMO's driver aims at it too)", driving),
+      choice_key("reward", &ScenarioSettings::reward, reward_variants(),
+                 "reward variant: per-step terms of docs/scenarios.md"),
+      key("inflow", &ScenarioSettings::inflow, {.lo = 0, .hi = 3600},
+          "offered inflow per main-road lane, veh/h (Bernoulli, one draw per second)", driving),
+      key("ramp_inflow", &ScenarioSettings::ramp_inflow, {.lo = 0, .hi = 3600}, "inflow on the on-ramp, veh/h",
+          merge_only),
+      key("obstacles", &ScenarioSettings::obstacles, {.lo = 0, .hi = 100}, "slow obstacle vehicles on the road",
+          cut_in_only),
+      key("obstacle_speed_min", &ScenarioSettings::obstacle_speed_min, {.lo = 0, .hi = 35, .lo_open = true},
+          "lowest obstacle speed, m/s (each obstacle draws its own)", cut_in_only),
+      key("obstacle_speed_max", &ScenarioSettings::obstacle_speed_max, {.lo = 0, .hi = 35, .lo_open = true},
+          "highest obstacle speed, m/s", cut_in_only),
+  };
+  return keys;
+}
+
+const ConfigKey* find_config_key(const std::string& name, const std::vector<ConfigKey>& keys) {
+  for (const ConfigKey& k : keys)
+    if (k.name == name) return &k;
+  return nullptr;
+}
+
+}  // namespace rapid

@@ -1,0 +1,85 @@
+// A run's config, RunConfig, and its keys, one row each: the one place that says which keys
+// exist, which part of a run each configures, the field it fills, the values it accepts and what
+// it means. Parsing, validation, grid overrides and `--set` (run_config.hpp) read this table, and
+// the key table of docs/algorithms.md is generated from it (tests/test_configs.cpp fails when they
+// differ). The values runs use live in the scenario's file, experiments/configs/<scenario>.json.
+#pragma once
+
+#include <functional>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "algos/agent_config.hpp"
+#include "envs/scenario_settings.hpp"
+
+namespace rapid {
+
+// The fully resolved configuration of one training job: the agent's hyper-parameters plus the
+// training schedule. No defaults: every field comes from the scenario's config file through its
+// key below.
+struct RunConfig {
+  AgentConfig agent;
+  long steps{};
+  long warmup_steps{};
+  long eval_every{};
+  int eval_episodes{};
+  int last_k{};
+  long bc_log_every{};
+  long buffer_capacity{};
+  // A driving scenario's knobs. Scenario keys are the one kind a config file may leave out: a
+  // missing one keeps the scenario's built-in `short` value (envs/scenario_settings.cpp), so the
+  // short profile's files and config hashes predate the keys.
+  ScenarioSettings scenario;
+};
+
+// The part of a run a key configures; it follows from the struct that holds the key's field.
+enum class ConfigPart {
+  kAgent,     // the learner: networks, optimiser, losses (AgentConfig, algos/)
+  kSchedule,  // the training schedule: budget, warm-up, evaluation, logging (RunConfig)
+  kScenario,  // the simulated scenario: ScenarioSettings, owned by envs/ (optional keys)
+};
+
+// "agent", "schedule", "scenario".
+const char* part_name(ConfigPart part);
+
+// The numbers a key accepts (for a list: each entry): an interval whose ends may be open,
+// closed or absent.
+struct Bounds {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  bool lo_open = false, hi_open = false;
+
+  bool contains(double x) const;
+  // "positive", "≥ 0", "at least 2", "in [0, 1)"; empty when every number is accepted.
+  std::string text() const;
+};
+
+struct ConfigKey {
+  std::string name;
+  ConfigPart part = ConfigPart::kSchedule;
+  std::string type;  // "integer", "number", "list of integers" or "one of a, b"
+  Bounds bounds;
+  std::string doc;   // one line: what the key means
+  // The scenarios that have the key; null: every scenario. A key of one kind of scenario only
+  // (a driving scenario's traffic, say) is missing from the others' configs and refused there.
+  bool (*for_scenario)(const std::string& scenario) = nullptr;
+  // Checks the value's type and bounds and stores it in the key's field of `config`. Throws
+  // std::invalid_argument("config key 'K' …") saying what is wrong.
+  std::function<void(const nlohmann::json& value, RunConfig& config)> read;
+  // The key's value in `config`, as JSON.
+  std::function<nlohmann::json(const RunConfig& config)> write;
+
+  bool applies_to(const std::string& scenario) const { return for_scenario == nullptr || for_scenario(scenario); }
+  // The type and bounds as one phrase: "integer, positive", "list of integers, each positive".
+  std::string accepts() const;
+};
+
+// Every key of a run config, in the order the docs list them.
+const std::vector<ConfigKey>& config_keys();
+
+// The row of `name` in `keys`; nullptr when there is none.
+const ConfigKey* find_config_key(const std::string& name, const std::vector<ConfigKey>& keys = config_keys());
+
+}  // namespace rapid

@@ -1,0 +1,59 @@
+// Building a scenario's prior datasets (docs/datasets.md, paper IV-A-2): train a reference DDPG agent with
+// its own seed for the grid's full budget, keep its actor at 1/10, 1/2 and the end, and roll each
+// checkpoint out with exploration noise into `initial`, `medium` and `final`; `final+medium` is
+// half of each.
+//
+// Both stages are skipped when their outputs exist with a matching hash, so rerunning is cheap.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include <cstdint>
+#include <vector>
+
+#include "experiments/run/job.hpp"
+
+namespace rapid {
+
+// The prior datasets a scenario has, in the table's order. `rapid run --dataset` takes these
+// names (looked up in a DatasetFolder) or a path to any D4RL-layout file.
+const std::vector<std::string>& dataset_names();
+
+// Where `rapid dataset build --dir ROOT` keeps one scenario's files: ROOT/<scenario>/ holds
+// reference/ (the reference agent's job folder: record.json, actor_<step>.ckpt, actor.ckpt),
+// initial.h5, medium.h5, final.h5, final+medium.h5, progress.json while collecting, and
+// build.json, written last, saying the datasets are complete.
+struct DatasetFolder {
+  DatasetFolder(const std::string& root, const std::string& scenario) : dir(root + "/" + scenario) {}
+  std::string dir;
+  std::string reference() const { return dir + "/reference"; }
+  std::string dataset(const std::string& name) const { return dir + "/" + name + ".h5"; }
+  std::string done_marker() const { return dir + "/build.json"; }
+  std::string progress() const { return dir + "/" + job_files::kProgress; }
+};
+
+// The reference agent behind the datasets and how its data is collected (a grid's "reference").
+struct ReferenceSettings {
+  std::uint64_t seed = 1000;   // its own seed, never one of the evaluation seeds
+  long transitions = 20000;    // collected per dataset
+  float noise_std = 0.1f;      // exploration noise while collecting
+  // Decisions the reference trains, L: `final` is its actor at L, `initial` and `medium` at 1/10
+  // and 1/2 of the cells' budget T (the config's `steps`). 0: L = T, as in the short profile.
+  long steps = 0;
+};
+
+struct DatasetBuildSpec {
+  std::string scenario;
+  nlohmann::json config;  // the reference agent's resolved run config
+  ReferenceSettings reference;
+  std::string dir;        // DIR; outputs go to DIR/<scenario>/
+  bool reference_only = false;
+  bool force = false;
+};
+
+// Runs whatever stage is missing or stale. Returns 0 on success, 1 when the reference agent or a
+// dataset failed (its record or the message says why).
+int build_datasets(const DatasetBuildSpec& spec);
+
+}  // namespace rapid

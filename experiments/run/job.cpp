@@ -1,0 +1,34 @@
+#include "experiments/run/job.hpp"
+
+#include <stdexcept>
+
+#include "algos/registry.hpp"
+#include "core/atomic_file.hpp"
+#include "core/hash.hpp"
+
+namespace rapid {
+
+void check_dataset_fits(const std::string& algo, bool has_dataset) {
+  const bool needs = find_algorithm(algo).uses_prior;
+  if (needs && !has_dataset) throw std::invalid_argument("algorithm '" + algo + "' needs a prior dataset");
+  if (!needs && has_dataset) throw std::invalid_argument("algorithm '" + algo + "' takes no dataset");
+}
+
+std::string job_config_hash(const JobSpec& spec) {
+  nlohmann::json key = {{"scenario", spec.scenario}, {"algo", spec.algo}, {"seed", spec.seed},
+                        {"config", spec.config}, {"dataset", nullptr}};
+  if (!spec.dataset_path.empty()) key["dataset"] = fnv1a_hex(read_file(spec.dataset_path));
+  if (!spec.checkpoint_steps.empty()) key["checkpoint_steps"] = spec.checkpoint_steps;
+  return fnv1a_hex(key.dump());
+}
+
+std::string checkpoint_file(const std::string& dir, long step) {
+  return dir + "/actor_" + std::to_string(step) + ".ckpt";
+}
+
+void write_progress(const std::string& dir, long step, long steps, double steps_per_s) {
+  const nlohmann::json p = {{"step", step}, {"steps", steps}, {"steps_per_s", steps_per_s}};
+  write_file_atomic(dir + "/" + job_files::kProgress, p.dump());
+}
+
+}  // namespace rapid

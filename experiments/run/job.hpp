@@ -1,0 +1,45 @@
+// One training job: a table cell (scenario, dataset, algorithm, seed) with its resolved config,
+// what makes a finished one still valid (its hash) and the files it leaves in its folder.
+// run_job.hpp runs it; record.hpp is what it writes.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace rapid {
+
+// What a job leaves in its folder.
+namespace job_files {
+inline constexpr const char* kRecord = "record.json";      // the run record, written last
+inline constexpr const char* kProgress = "progress.json";  // how far it is, while it runs
+inline constexpr const char* kActor = "actor.ckpt";        // the trained actor
+}  // namespace job_files
+
+struct JobSpec {
+  std::string scenario;
+  std::string algo;
+  std::string dataset;       // the name in the table ("initial", …) or a path; empty for ddpg
+  std::string dataset_path;  // the file it resolves to; empty for ddpg
+  std::uint64_t seed = 0;
+  nlohmann::json config;     // fully resolved (run_config.hpp)
+  std::string out_dir;
+  std::vector<long> checkpoint_steps;  // extra actor checkpoints (reference agents)
+};
+
+// An algorithm that uses prior data needs a dataset, the others take none (their registry row
+// says which). Throws std::invalid_argument("algorithm 'X' needs a prior dataset" / "… takes no
+// dataset").
+void check_dataset_fits(const std::string& algo, bool has_dataset);
+
+// The hash that says whether a finished record still answers this job: the cell, the resolved
+// config and the dataset file's content. Code revision is deliberately not part of it.
+std::string job_config_hash(const JobSpec& spec);
+
+// dir/progress.json: how far a running job is (`rapid status` and the live sweep display read it).
+void write_progress(const std::string& dir, long step, long steps, double steps_per_s);
+
+// Where a job keeps the extra actor checkpoint taken after `step` training steps.
+std::string checkpoint_file(const std::string& dir, long step);
+
+}  // namespace rapid

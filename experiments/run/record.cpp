@@ -1,0 +1,58 @@
+#include "experiments/run/record.hpp"
+
+#include "experiments/run/json_numbers.hpp"
+#include "experiments/run/provenance.hpp"
+
+namespace rapid {
+
+nlohmann::json start_record(const JobSpec& spec) {
+  nlohmann::json record = {
+      {"schema", kRunRecordSchema},
+      {"status", "failed"},
+      {"error", nullptr},
+      {"cell", {{"scenario", spec.scenario},
+                {"dataset", spec.dataset.empty() ? nlohmann::json(nullptr) : nlohmann::json(spec.dataset)},
+                {"algo", spec.algo},
+                {"seed", spec.seed}}},
+      {"config", spec.config},
+      {"provenance", provenance_json()},
+  };
+  record["provenance"]["start_time"] = utc_now_iso8601();
+  return record;
+}
+
+namespace {
+
+void add_curves(const TrainLog& log, nlohmann::json& record) {
+  record["eval"] = nlohmann::json::array();
+  for (const EvalPoint& e : log.eval)
+    record["eval"].push_back({{"step", e.step}, {"target_step", e.target_step}, {"return_mean", e.return_mean},
+                              {"return_std", e.return_std}, {"collision_rate", e.collision_rate}});
+  record["train_episodes"] = nlohmann::json::array();
+  for (const TrainEpisode& e : log.episodes)
+    record["train_episodes"].push_back(
+        {{"step", e.step}, {"return", e.ret}, {"length", e.length}, {"collision", e.collision}});
+  record["bc_loss"] = nlohmann::json::array();
+  record["losses"] = nlohmann::json::array();
+  for (const LossPoint& p : log.losses) {
+    record["bc_loss"].push_back({{"step", p.step}, {"prior", json_number(p.bc_prior)}, {"online", json_number(p.bc_online)}});
+    record["losses"].push_back({{"step", p.step}, {"critic", json_number(p.critic_loss)},
+                                {"actor", json_number(p.actor_loss)}, {"q_mean", json_number(p.q_mean)}});
+  }
+}
+
+}  // namespace
+
+void finish_record(nlohmann::json& record, const TrainLog& log, int last_k, double wall_s) {
+  add_curves(log, record);
+  const auto [final_mean, final_std] = final_performance(log, last_k);
+  record["final"] = {{"return_mean", final_mean}, {"return_std", final_std}, {"last_k", last_k}};
+  record["timing"] = {{"wall_s", wall_s},
+                      {"env_steps_per_s", log.env_seconds > 0 ? log.env_steps / log.env_seconds : 0.0},
+                      {"updates_per_s", log.update_seconds > 0 ? log.updates / log.update_seconds : 0.0},
+                      {"eval_s", log.eval_seconds},
+                      {"train_steps_per_s", wall_s > 0 ? log.env_steps / wall_s : 0.0}};
+  record["provenance"]["end_time"] = utc_now_iso8601();
+}
+
+}  // namespace rapid

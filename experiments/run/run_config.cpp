@@ -1,0 +1,118 @@
+#include "experiments/run/run_config.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+namespace rapid {
+
+std::string config_dir() {
+  if (const char* dir = std::getenv("RAPID_CONFIG_DIR"); dir && *dir) return dir;
+  return RAPID_DEFAULT_CONFIG_DIR;
+}
+
+const std::vector<std::string>& config_profiles() {
+  static const std::vector<std::string> names = {"short", "flow"};
+  return names;
+}
+
+namespace {
+std::string config_path(const std::string& scenario, const std::string& profile) {
+  return config_dir() + "/" + profile + "/" + scenario + ".json";
+}
+}  // namespace
+
+void check_profile(const std::string& profile, const std::string& scenario) {
+  const auto& names = config_profiles();
+  if (std::find(names.begin(), names.end(), profile) == names.end())
+    throw std::invalid_argument("unknown profile '" + profile + "' (profiles: short, flow)");
+  if (!std::filesystem::exists(config_path(scenario, profile)))
+    throw std::invalid_argument("scenario '" + scenario + "' has no '" + profile + "' profile");
+}
+
+nlohmann::json default_config_json(const std::string& scenario, const std::string& profile) {
+  const std::string path = config_path(scenario, profile);
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("missing config file " + path);
+  try {
+    nlohmann::json j = nlohmann::json::parse(in);
+    if (!j.is_object()) throw std::runtime_error("not a JSON object");
+    return j;
+  } catch (const std::exception& e) {
+    throw std::runtime_error("config file " + path + ": " + e.what());
+  }
+}
+
+namespace {
+
+// The row of `name`, which must be a key of `scenario`.
+const ConfigKey& key_of(const std::string& name, const std::string& scenario, const std::vector<ConfigKey>& keys) {
+  const ConfigKey* key = find_config_key(name, keys);
+  if (!key) throw std::invalid_argument("unknown config key '" + name + "'");
+  if (!key->applies_to(scenario))
+    throw std::invalid_argument("config key '" + name + "' does not apply to scenario '" + scenario + "'");
+  return *key;
+}
+
+}  // namespace
+
+void apply_overrides(nlohmann::json& config, const nlohmann::json& overrides, const std::string& scenario,
+                     const std::string& origin, const std::vector<ConfigKey>& keys) {
+  if (!overrides.is_object()) throw std::invalid_argument(origin + ": overrides must be an object");
+  for (const auto& [name, value] : overrides.items()) {
+    try {
+      RunConfig scratch;
+      key_of(name, scenario, keys).read(value, scratch);  // checks the value where it is given
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(origin + ": " + e.what());
+    }
+    config[name] = value;
+  }
+}
+
+void parse_set_option(const std::string& assignment, nlohmann::json& overrides) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw std::invalid_argument("--set: expected key=value, got '" + assignment + "'");
+  const std::string key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  nlohmann::json value = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (value.is_discarded()) value = text;
+  overrides[key] = value;
+}
+
+nlohmann::json resolve_config(const std::string& scenario, const std::string& profile,
+                              const nlohmann::json& grid_overrides, const nlohmann::json& set_overrides) {
+  check_profile(profile, scenario);
+  nlohmann::json config = default_config_json(scenario, profile);
+  if (grid_overrides.is_object()) apply_overrides(config, grid_overrides, scenario, "grid");
+  if (set_overrides.is_object()) apply_overrides(config, set_overrides, scenario, "--set");
+  run_config_from_json(config, scenario);  // validates the whole
+  return config;
+}
+
+RunConfig run_config_from_json(const nlohmann::json& j, const std::string& scenario,
+                               const std::vector<ConfigKey>& keys) {
+  if (!j.is_object()) throw std::invalid_argument("config must be a JSON object");
+  for (const ConfigKey& key : keys)
+    if (key.part != ConfigPart::kScenario && key.applies_to(scenario) && !j.contains(key.name))
+      throw std::invalid_argument("config is missing key '" + key.name + "'");
+  RunConfig config;
+  if (is_driving_scenario(scenario)) config.scenario = default_scenario_settings(scenario);
+  for (const auto& [name, value] : j.items()) key_of(name, scenario, keys).read(value, config);
+  if (is_driving_scenario(scenario)) {
+    try {
+      validate_scenario_settings(scenario, config.scenario);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("config key ") + e.what());
+    }
+  }
+  return config;
+}
+
+std::unique_ptr<Env> make_run_env(const std::string& scenario, const RunConfig& config) {
+  return is_driving_scenario(scenario) ? make_env(scenario, config.scenario) : make_env(scenario);
+}
+
+}  // namespace rapid

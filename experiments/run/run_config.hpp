@@ -1,0 +1,54 @@
+// Resolving a run's config (RunConfig, config_keys.hpp): the scenario's file in the chosen profile
+// (experiments/configs/<profile>/<scenario>.json), then a grid's overrides, then `rapid run --set
+// key=value`, each checked key by key against the key table. The resolved config is recorded in
+// the run record and hashed.
+#pragma once
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "envs/env.hpp"
+#include "experiments/run/config_keys.hpp"
+
+namespace rapid {
+
+// The folder with one subfolder of per-scenario config files per profile; RAPID_CONFIG_DIR
+// overrides the built-in path.
+std::string config_dir();
+
+// The profiles: "short" (the scenarios as first built, the default) and "flow" (the paper's scale).
+const std::vector<std::string>& config_profiles();
+inline constexpr const char* kDefaultProfile = "short";
+
+// Throws std::invalid_argument naming `profile` unless it is a profile with a file for `scenario`.
+void check_profile(const std::string& profile, const std::string& scenario);
+
+// The config file of `scenario` in `profile` as it is (throws std::runtime_error if it is missing
+// or not a JSON object; its keys are checked when it is parsed).
+nlohmann::json default_config_json(const std::string& scenario, const std::string& profile = kDefaultProfile);
+
+// Applies `overrides` (an object) onto `config`, a config of `scenario`: each key must be a config
+// key of that scenario with a valid value. Throws std::invalid_argument "ORIGIN: …" naming the key.
+void apply_overrides(nlohmann::json& config, const nlohmann::json& overrides, const std::string& scenario,
+                     const std::string& origin, const std::vector<ConfigKey>& keys = config_keys());
+
+// Parses "key=value" (value as JSON, else as a plain string) into `overrides`.
+void parse_set_option(const std::string& assignment, nlohmann::json& overrides);
+
+// The config of a cell: the scenario's file in `profile`, then the grid's overrides (if
+// `grid_overrides` is an object), then `--set` overrides, validated as a whole. Throws
+// std::invalid_argument naming the offending key.
+nlohmann::json resolve_config(const std::string& scenario, const std::string& profile,
+                              const nlohmann::json& grid_overrides, const nlohmann::json& set_overrides);
+
+// Converts a config of `scenario`: it must have every key of that scenario (scenario keys may be
+// left out) and no other, each with a valid value. Throws std::invalid_argument naming the key.
+RunConfig run_config_from_json(const nlohmann::json& j, const std::string& scenario,
+                               const std::vector<ConfigKey>& keys = config_keys());
+
+// The environment a run of `scenario` with `config` trains and evaluates in.
+std::unique_ptr<Env> make_run_env(const std::string& scenario, const RunConfig& config);
+
+}  // namespace rapid

@@ -1,0 +1,221 @@
+#include "experiments/run/trainer.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "core/clock.hpp"
+#include "core/statistics.hpp"
+
+namespace rapid {
+
+namespace {
+
+// Running means of UpdateStats over one logging window.
+struct LossWindow {
+  double bc_prior = 0, bc_online = 0, critic = 0, actor = 0, q = 0;
+  long n = 0;
+  void add(const UpdateStats& s) {
+    bc_prior += s.bc_prior;
+    bc_online += s.bc_online;
+    critic += s.critic_loss;
+    actor += s.actor_loss;
+    q += s.q_mean;
+    ++n;
+  }
+  LossPoint flush(long step) {
+    const double k = static_cast<double>(n);
+    LossPoint p{step, bc_prior / k, bc_online / k, critic / k, actor / k, q / k};
+    *this = {};
+    return p;
+  }
+};
+
+}  // namespace
+
+EvalResult evaluate(Env& env, ActorCritic& agent, int episodes) {
+  Vec obs(env.obs_dim());
+  std::vector<double> returns;
+  int collisions = 0;
+  for (int e = 0; e < episodes; ++e) {
+    env.reset(stream_seed(kEvaluationBaseSeed, Stream::kEnvEval, static_cast<std::uint64_t>(e)), obs);
+    double ret = 0;
+    bool collided = false;
+    for (;;) {
+      const StepResult r = env.step(agent.act(obs).col(0), obs);
+      ret += r.reward;
+      collided = collided || r.info.collision;
+      if (r.terminated || r.truncated) break;
+    }
+    returns.push_back(ret);
+    collisions += collided ? 1 : 0;
+  }
+  return {mean(returns), population_std(returns), static_cast<double>(collisions) / episodes};
+}
+
+std::pair<double, double> final_performance(const TrainLog& log, int last_k) {
+  std::vector<double> last;
+  const int n = static_cast<int>(log.eval.size());
+  for (int i = std::max(0, n - last_k); i < n; ++i) last.push_back(log.eval[i].return_mean);
+  if (last.empty()) return {0.0, 0.0};  // a run that failed before its first evaluation
+  return {mean(last), population_std(last)};
+}
+
+namespace {
+
+// One call of train(): the run's buffers, generators and schedules, so that run() reads as
+// Algorithm 1 (act, store, learn, log; evaluate and reset at episode boundaries) and each of
+// those steps has a name. Everything is allocated here, nothing per decision.
+class TrainingRun {
+ public:
+  TrainingRun(Env& env, ActorCritic& agent, const ReplayBuffer* prior, const RunConfig& config, std::uint64_t run_seed,
+              TrainLog& log, const TrainHooks& hooks)
+      : env_(env),
+        agent_(agent),
+        config_(config),
+        run_seed_(run_seed),
+        log_(log),
+        hooks_(hooks),
+        online_(env.obs_dim(), env.act_dim(), static_cast<std::size_t>(std::min(config.buffer_capacity, config.steps))),
+        sampler_(prior, &online_),
+        explore_rng_(stream_seed(run_seed, Stream::kExploration)),
+        sample_rng_(stream_seed(run_seed, Stream::kSampling)),
+        obs_(env.obs_dim()),
+        next_obs_(env.obs_dim()),
+        action_(env.act_dim()) {
+    batch_.resize(env.obs_dim(), env.act_dim(), config.agent.batch_size);
+  }
+
+  void run() {
+    log_ = {};
+    last_progress_ = Clock::now();
+    evaluate_now(0, 0);
+    next_eval_ = config_.eval_every;
+    start_episode(0);
+    for (long t = 0; t < config_.steps; ++t) {
+      choose_action(t);
+      const StepResult r = step_env();
+      const long done_steps = t + 1;
+      if (done_steps >= config_.warmup_steps) learn(done_steps);
+      if (done_steps % config_.bc_log_every == 0 && window_.n > 0) log_losses(done_steps);
+      checkpoint_if_due(done_steps);
+      const bool last_step = done_steps == config_.steps;
+      if (r.terminated || r.truncated || last_step) end_episode(done_steps, r, last_step);
+      report_progress(done_steps);
+    }
+  }
+
+ private:
+  // Uniform random during the warm-up, then π(s) plus Gaussian noise, clipped to [-1, 1].
+  void choose_action(long t) {
+    const int act_dim = static_cast<int>(action_.size());
+    if (t < config_.warmup_steps) {
+      for (int i = 0; i < act_dim; ++i) action_[i] = static_cast<float>(explore_rng_.uniform(-1.0, 1.0));
+      return;
+    }
+    action_ = agent_.act(obs_).col(0);
+    for (int i = 0; i < act_dim; ++i)
+      action_[i] =
+          std::clamp(action_[i] + static_cast<float>(explore_rng_.normal(0.0, config_.agent.noise_std)), -1.0f, 1.0f);
+  }
+
+  // One decision in the environment: the transition goes into the online buffer and the episode.
+  StepResult step_env() {
+    const auto t0 = Clock::now();
+    const StepResult r = env_.step(action_, next_obs_);
+    log_.env_seconds += seconds_since(t0);
+    online_.add(obs_, action_, r.reward, next_obs_, r.terminated, r.truncated && !r.terminated);
+    episode_.ret += r.reward;
+    ++episode_.length;
+    episode_.collision = episode_.collision || r.info.collision;
+    obs_ = next_obs_;
+    ++log_.env_steps;
+    return r;
+  }
+
+  // One gradient step on a fresh batch (one per decision after the warm-up). A NaN or inf loss
+  // ends the run as diverged.
+  void learn(long done_steps) {
+    const auto t0 = Clock::now();
+    sampler_.sample(sample_rng_, batch_);
+    const UpdateStats s = agent_.update(batch_);
+    log_.update_seconds += seconds_since(t0);
+    ++log_.updates;
+    if (!s.finite)
+      throw DivergedError("training diverged at step " + std::to_string(done_steps) + ": critic loss " +
+                          std::to_string(s.critic_loss) + ", actor loss " + std::to_string(s.actor_loss));
+    window_.add(s);
+  }
+
+  // The mean losses of the window that just ended, once no weight has become NaN or inf.
+  void log_losses(long done_steps) {
+    if (!agent_.parameters_finite())
+      throw DivergedError("training diverged at step " + std::to_string(done_steps) + ": a network weight is NaN or inf");
+    log_.losses.push_back(window_.flush(done_steps));
+  }
+
+  void checkpoint_if_due(long done_steps) {
+    if (next_checkpoint_ < hooks_.checkpoint_steps.size() && done_steps == hooks_.checkpoint_steps[next_checkpoint_]) {
+      if (hooks_.checkpoint) hooks_.checkpoint(done_steps);
+      ++next_checkpoint_;
+    }
+  }
+
+  // The episode (or the run) ended: keep the episode, evaluate if one is due, start the next.
+  // Evaluations happen only here: one simulation per process, so never mid-episode.
+  void end_episode(long done_steps, const StepResult& r, bool last_step) {
+    if (r.terminated || r.truncated) log_.episodes.push_back(episode_);
+    if (done_steps >= next_eval_ || last_step) {
+      const long target = last_step ? config_.steps : next_eval_;
+      while (next_eval_ <= done_steps) next_eval_ += config_.eval_every;
+      evaluate_now(done_steps, std::min(target, config_.steps));
+    }
+    if (!last_step) start_episode(done_steps);
+  }
+
+  void start_episode(long at_step) {
+    env_.reset(stream_seed(run_seed_, Stream::kEnvTrain, episode_index_++), obs_);
+    episode_ = {at_step, 0.0, 0, false};
+  }
+
+  // `target` is the multiple of eval_every this evaluation stands for (curves align on it).
+  void evaluate_now(long step, long target) {
+    const auto t0 = Clock::now();
+    const EvalResult r = evaluate(env_, agent_, config_.eval_episodes);
+    log_.eval.push_back({step, target, r.return_mean, r.return_std, r.collision_rate});
+    log_.eval_seconds += seconds_since(t0);
+  }
+
+  void report_progress(long done_steps) {
+    if (!hooks_.progress || seconds_since(last_progress_) < 1.0) return;
+    hooks_.progress(done_steps, log_);
+    last_progress_ = Clock::now();
+  }
+
+  Env& env_;
+  ActorCritic& agent_;
+  const RunConfig& config_;
+  const std::uint64_t run_seed_;
+  TrainLog& log_;
+  const TrainHooks& hooks_;
+  ReplayBuffer online_;
+  SymmetricSampler sampler_;
+  Batch batch_;
+  Rng explore_rng_, sample_rng_;
+  Vec obs_, next_obs_, action_;
+  std::uint64_t episode_index_ = 0;
+  TrainEpisode episode_;
+  long next_eval_ = 0;
+  std::size_t next_checkpoint_ = 0;
+  LossWindow window_;
+  Clock::time_point last_progress_{};
+};
+
+}  // namespace
+
+void train(Env& env, ActorCritic& agent, const ReplayBuffer* prior, const RunConfig& config,
+           std::uint64_t run_seed, TrainLog& log, const TrainHooks& hooks) {
+  if (prior != nullptr && prior->empty()) throw std::invalid_argument("the prior buffer is empty");
+  TrainingRun(env, agent, prior, config, run_seed, log, hooks).run();
+}
+
+}  // namespace rapid

@@ -1,0 +1,71 @@
+// The online training loop shared by every algorithm (paper Algorithm 1) and the deterministic
+// evaluation. Works on any Env; knows nothing of SUMO or of which algorithm it trains.
+#pragma once
+
+#include <functional>
+#include <stdexcept>
+#include <vector>
+
+#include "algos/actor_critic.hpp"
+#include "envs/env.hpp"
+#include "experiments/run/config_keys.hpp"
+
+namespace rapid {
+
+struct EvalPoint {
+  long step = 0;         // environment steps when the evaluation ran (an episode boundary)
+  long target_step = 0;  // the multiple of eval_every it stands for (curves align on this)
+  double return_mean = 0, return_std = 0, collision_rate = 0;
+};
+
+struct TrainEpisode {
+  long step = 0;  // environment steps at the episode's start
+  double ret = 0;
+  int length = 0;
+  bool collision = false;
+};
+
+// Means over the updates of one logging window; NaN where not defined (bc_prior without prior).
+struct LossPoint {
+  long step = 0;
+  double bc_prior = 0, bc_online = 0, critic_loss = 0, actor_loss = 0, q_mean = 0;
+};
+
+struct TrainLog {
+  std::vector<EvalPoint> eval;
+  std::vector<TrainEpisode> episodes;
+  std::vector<LossPoint> losses;
+  long env_steps = 0, updates = 0;
+  double env_seconds = 0, update_seconds = 0, eval_seconds = 0;
+};
+
+struct TrainHooks {
+  std::vector<long> checkpoint_steps;             // call `checkpoint` after these steps
+  std::function<void(long step)> checkpoint;
+  std::function<void(long step, const TrainLog&)> progress;  // called now and then (≥ 1 s apart)
+};
+
+// Thrown when a loss or a weight becomes NaN or inf.
+class DivergedError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct EvalResult {
+  double return_mean = 0, return_std = 0, collision_rate = 0;
+};
+
+// Runs `episodes` episodes of the deterministic policy on the fixed evaluation seeds.
+EvalResult evaluate(Env& env, ActorCritic& agent, int episodes);
+
+// Trains `agent` online for config.steps decisions. With a `prior` buffer (for the algorithms
+// whose registry row says uses_prior), every batch is half prior, half online; null: all online.
+// Fills `log` as it goes, so a run that throws (DivergedError, a simulator error) keeps the
+// curves it had measured.
+void train(Env& env, ActorCritic& agent, const ReplayBuffer* prior, const RunConfig& config,
+           std::uint64_t run_seed, TrainLog& log, const TrainHooks& hooks = {});
+
+// Final performance: the mean and std of the last K evaluations' mean returns.
+std::pair<double, double> final_performance(const TrainLog& log, int last_k);
+
+}  // namespace rapid

@@ -1,0 +1,311 @@
+#include "experiments/sweep/grid.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "algos/registry.hpp"
+#include "envs/env.hpp"
+#include "experiments/run/dataset_build.hpp"
+#include "experiments/run/run_config.hpp"
+
+namespace rapid {
+
+namespace {
+
+using nlohmann::json;
+
+const std::set<std::string> kTopLevelKeys = {"name",   "description",     "scenarios", "datasets",    "algos",
+                                             "seeds",  "config",          "scenario_config", "reference",
+                                             "max_retries", "jobs", "profile"};
+// The double the default float came from, so grid.json shows 0.1 rather than 0.100000001.
+constexpr double kDefaultReferenceNoise = 0.1;
+const std::set<std::string> kReferenceKeys = {"seed", "transitions", "noise_std", "steps"};
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+// Collects the validation context so every message has the same "grid PATH: FIELD: …" shape.
+class GridChecker {
+ public:
+  explicit GridChecker(std::string label) : label_(std::move(label)) {}
+
+  [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
+    throw std::invalid_argument("grid " + label_ + ": " + field + ": " + problem);
+  }
+
+  void only_known_keys(const json& object, const std::set<std::string>& known, const std::string& where) const {
+    for (const auto& [key, value] : object.items())
+      if (!known.count(key)) {
+        std::vector<std::string> names(known.begin(), known.end());
+        fail(where.empty() ? key : where + "." + key, "unknown key; expected one of " + joined(names));
+      }
+  }
+
+  std::string name(const json& doc) const {
+    if (!doc.contains("name")) fail("name", "missing (a string naming the sweep)");
+    const json& v = doc["name"];
+    if (!v.is_string()) fail("name", "expected a string, got " + v.dump());
+    const std::string s = v.get<std::string>();
+    const bool safe = !s.empty() && s != "." && s != ".." && std::all_of(s.begin(), s.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-';
+    });
+    if (!safe) fail("name", "'" + s + "' must be non-empty and use only letters, digits, '.', '_' and '-'");
+    return s;
+  }
+
+  // A non-empty array of distinct names, each one of `allowed`.
+  std::vector<std::string> name_axis(const json& doc, const std::string& field, const std::vector<std::string>& allowed,
+                                     const std::string& what) const {
+    const json& axis = axis_array(doc, field);
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < axis.size(); ++i) {
+      const std::string at = field + "[" + std::to_string(i) + "]";
+      if (!axis[i].is_string()) fail(at, "expected a " + what + " name (string), got " + axis[i].dump());
+      const std::string s = axis[i].get<std::string>();
+      if (std::find(allowed.begin(), allowed.end(), s) == allowed.end())
+        fail(at, "unknown " + what + " '" + s + "'; expected one of " + joined(allowed));
+      if (std::find(out.begin(), out.end(), s) != out.end()) fail(at, "duplicate " + what + " '" + s + "'");
+      out.push_back(s);
+    }
+    return out;
+  }
+
+  std::vector<std::uint64_t> seed_axis(const json& doc) const {
+    const json& axis = axis_array(doc, "seeds");
+    std::vector<std::uint64_t> out;
+    for (std::size_t i = 0; i < axis.size(); ++i) {
+      const std::string at = "seeds[" + std::to_string(i) + "]";
+      const std::uint64_t seed = non_negative_integer(axis[i], at);
+      // `rapid run --seed` takes at most 19 digits.
+      if (seed > 9'999'999'999'999'999'999ULL) fail(at, "seed " + std::to_string(seed) + " is too large (at most 19 digits)");
+      if (std::find(out.begin(), out.end(), seed) != out.end()) fail(at, "duplicate seed " + std::to_string(seed));
+      out.push_back(seed);
+    }
+    return out;
+  }
+
+  std::uint64_t non_negative_integer(const json& v, const std::string& field) const {
+    if (!v.is_number_integer()) fail(field, "expected a non-negative integer, got " + v.dump());
+    if (v.is_number_unsigned()) return v.get<std::uint64_t>();
+    const auto x = v.get<std::int64_t>();
+    if (x < 0) fail(field, "expected a non-negative integer, got " + v.dump());
+    return static_cast<std::uint64_t>(x);
+  }
+
+  const json& object_or_empty(const json& doc, const std::string& field) const {
+    static const json kEmpty = json::object();
+    if (!doc.contains(field)) return kEmpty;
+    if (!doc[field].is_object()) fail(field, "expected an object, got " + doc[field].dump());
+    return doc[field];
+  }
+
+ private:
+  const json& axis_array(const json& doc, const std::string& field) const {
+    if (!doc.contains(field)) fail(field, "missing (a non-empty array)");
+    const json& axis = doc[field];
+    if (!axis.is_array()) fail(field, "expected an array, got " + axis.dump());
+    if (axis.empty()) fail(field, "must not be empty");
+    return axis;
+  }
+
+  std::string label_;
+};
+
+ReferenceSettings parse_reference(const GridChecker& check, const json& ref, const std::vector<std::uint64_t>& seeds) {
+  check.only_known_keys(ref, kReferenceKeys, "reference");
+  ReferenceSettings r;
+  if (ref.contains("seed")) r.seed = check.non_negative_integer(ref["seed"], "reference.seed");
+  if (std::find(seeds.begin(), seeds.end(), r.seed) != seeds.end())
+    check.fail("reference.seed", std::to_string(r.seed) + " is also an evaluation seed; the reference agent needs its own");
+  if (ref.contains("transitions")) {
+    const std::uint64_t t = check.non_negative_integer(ref["transitions"], "reference.transitions");
+    if (t == 0) check.fail("reference.transitions", "must be positive");
+    r.transitions = static_cast<long>(t);
+  }
+  if (ref.contains("noise_std")) {
+    const json& v = ref["noise_std"];
+    if (!v.is_number() || v.get<double>() < 0) check.fail("reference.noise_std", "expected a number ≥ 0, got " + v.dump());
+    r.noise_std = v.get<float>();
+  }
+  return r;
+}
+
+// "reference"."steps": one L for every scenario or one per scenario, each at least the cells' budget.
+void parse_reference_steps(const GridChecker& check, const json& ref, Grid& grid) {
+  if (!ref.contains("steps")) return;
+  const json& steps = ref["steps"];
+  auto one = [&](const std::string& scenario, const json& v, const std::string& field) {
+    const std::uint64_t n = check.non_negative_integer(v, field);
+    const long budget = cell_config(grid, scenario).at("steps").get<long>();
+    if (static_cast<long>(n) < budget)
+      check.fail(field, std::to_string(n) + " is below the cells' budget of " + std::to_string(budget) + " steps");
+    grid.reference_steps[scenario] = static_cast<long>(n);
+  };
+  if (steps.is_object()) {
+    for (const auto& [scenario, v] : steps.items()) {
+      if (std::find(grid.scenarios.begin(), grid.scenarios.end(), scenario) == grid.scenarios.end())
+        check.fail("reference.steps." + scenario, "'" + scenario + "' is not one of the grid's scenarios");
+      one(scenario, v, "reference.steps." + scenario);
+    }
+  } else {
+    for (const std::string& scenario : grid.scenarios) one(scenario, steps, "reference.steps");
+  }
+}
+
+// apply_overrides prefixes its messages with the origin we gave it; the checker adds the field.
+std::string without_prefix(const std::string& text, const std::string& prefix) {
+  return text.rfind(prefix, 0) == 0 ? text.substr(prefix.size()) : text;
+}
+
+// Every scenario's resolved config must be valid: unknown keys, wrong types and bad values in
+// the overrides are reported against the object they came from.
+void check_overrides(const GridChecker& check, const Grid& grid) {
+  for (const auto& [scenario, overrides] : grid.scenario_config.items()) {
+    const auto& names = env_names();
+    if (std::find(names.begin(), names.end(), scenario) == names.end())
+      check.fail("scenario_config." + scenario, "unknown scenario '" + scenario + "'; expected one of " + joined(names));
+    if (!overrides.is_object()) check.fail("scenario_config." + scenario, "expected an object, got " + overrides.dump());
+  }
+  std::vector<std::string> to_check = grid.scenarios;
+  for (const auto& [scenario, overrides] : grid.scenario_config.items())
+    if (std::find(to_check.begin(), to_check.end(), scenario) == to_check.end()) to_check.push_back(scenario);
+  for (const std::string& scenario : to_check) {
+    json config;
+    try {
+      check_profile(grid.profile, scenario);
+      config = default_config_json(scenario, grid.profile);
+    } catch (const std::exception& e) {
+      check.fail("scenarios", "no default config for '" + scenario + "' (" + e.what() + ")");
+    }
+    // Scenarios' defaults may differ, so say which one a shared override failed against.
+    const std::string context = to_check.size() > 1 ? " (with the defaults of '" + scenario + "')" : "";
+    try {
+      apply_overrides(config, grid.config, scenario, "config");
+      run_config_from_json(config, scenario);
+    } catch (const std::invalid_argument& e) {
+      check.fail("config", without_prefix(e.what(), "config: ") + context);
+    }
+    if (!grid.scenario_config.contains(scenario)) continue;
+    const std::string field = "scenario_config." + scenario;
+    try {
+      apply_overrides(config, grid.scenario_config[scenario], scenario, field);
+      run_config_from_json(config, scenario);
+    } catch (const std::invalid_argument& e) {
+      check.fail(field, without_prefix(e.what(), field + ": "));
+    }
+  }
+}
+
+}  // namespace
+
+Grid parse_grid(const json& doc, const std::string& label) {
+  const GridChecker check(label);
+  if (!doc.is_object()) check.fail("(top level)", "expected a JSON object");
+  check.only_known_keys(doc, kTopLevelKeys, "");
+  Grid grid;
+  grid.name = check.name(doc);
+  if (doc.contains("description")) {
+    if (!doc["description"].is_string()) check.fail("description", "expected a string, got " + doc["description"].dump());
+    grid.description = doc["description"].get<std::string>();
+  }
+  grid.scenarios = check.name_axis(doc, "scenarios", env_names(), "scenario");
+  grid.datasets = check.name_axis(doc, "datasets", dataset_names(), "dataset");
+  grid.algos = check.name_axis(doc, "algos", algo_names(), "algorithm");
+  grid.seeds = check.seed_axis(doc);
+  if (doc.contains("profile")) {
+    if (!doc["profile"].is_string()) check.fail("profile", "expected a string, got " + doc["profile"].dump());
+    grid.profile = doc["profile"].get<std::string>();
+    const auto& names = config_profiles();
+    if (std::find(names.begin(), names.end(), grid.profile) == names.end())
+      check.fail("profile", "unknown profile '" + grid.profile + "'; expected one of " + joined(names));
+  }
+  grid.config = check.object_or_empty(doc, "config");
+  grid.scenario_config = check.object_or_empty(doc, "scenario_config");
+  grid.reference = parse_reference(check, check.object_or_empty(doc, "reference"), grid.seeds);
+  if (doc.contains("max_retries")) {
+    const std::uint64_t r = check.non_negative_integer(doc["max_retries"], "max_retries");
+    if (r > 100) check.fail("max_retries", "at most 100, got " + std::to_string(r));
+    grid.max_retries = static_cast<int>(r);
+  }
+  if (doc.contains("jobs")) {
+    const std::uint64_t j = check.non_negative_integer(doc["jobs"], "jobs");
+    if (j == 0 || j > 1024) check.fail("jobs", "expected a worker count from 1 to 1024, got " + doc["jobs"].dump());
+    grid.jobs = static_cast<int>(j);
+  }
+  check_overrides(check, grid);
+  parse_reference_steps(check, check.object_or_empty(doc, "reference"), grid);
+
+  grid.normalized = doc;
+  grid.normalized["config"] = grid.config;
+  grid.normalized["scenario_config"] = grid.scenario_config;
+  json ref = check.object_or_empty(doc, "reference");
+  if (!ref.contains("seed")) ref["seed"] = grid.reference.seed;
+  if (!ref.contains("transitions")) ref["transitions"] = grid.reference.transitions;
+  if (!ref.contains("noise_std")) ref["noise_std"] = kDefaultReferenceNoise;
+  grid.normalized["reference"] = ref;
+  grid.normalized["max_retries"] = grid.max_retries;
+  return grid;
+}
+
+Grid load_grid(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument("grid " + path + ": cannot read the file");
+  std::stringstream text;
+  text << in.rdbuf();
+  json doc;
+  try {
+    doc = json::parse(text.str());
+  } catch (const json::parse_error& e) {
+    throw std::invalid_argument("grid " + path + ": not valid JSON: " + e.what());
+  }
+  return parse_grid(doc, path);
+}
+
+json grid_overrides(const Grid& grid, const std::string& scenario) {
+  json out = grid.config;
+  if (grid.scenario_config.contains(scenario)) out.update(grid.scenario_config[scenario]);
+  return out;
+}
+
+namespace {
+void collect_differences(const json& a, const json& b, const std::string& path, std::vector<std::string>& out) {
+  if (a.is_object() && b.is_object()) {
+    std::set<std::string> keys;
+    for (const auto& [k, v] : a.items()) keys.insert(k);
+    for (const auto& [k, v] : b.items()) keys.insert(k);
+    for (const auto& k : keys) {
+      const std::string sub = path.empty() ? k : path + "." + k;
+      if (!a.contains(k)) out.push_back(sub + ": added " + b[k].dump());
+      else if (!b.contains(k)) out.push_back(sub + ": removed (was " + a[k].dump() + ")");
+      else collect_differences(a[k], b[k], sub, out);
+    }
+    return;
+  }
+  if (a != b) out.push_back(path + ": " + a.dump() + " → " + b.dump());
+}
+}  // namespace
+
+std::vector<std::string> grid_differences(const json& before, const json& after) {
+  std::vector<std::string> out;
+  collect_differences(before, after, "", out);
+  return out;
+}
+
+ReferenceSettings reference_for(const Grid& grid, const std::string& scenario) {
+  ReferenceSettings r = grid.reference;
+  if (const auto it = grid.reference_steps.find(scenario); it != grid.reference_steps.end()) r.steps = it->second;
+  return r;
+}
+
+nlohmann::json cell_config(const Grid& grid, const std::string& scenario) {
+  return resolve_config(scenario, grid.profile, grid_overrides(grid, scenario), nlohmann::json());
+}
+
+}  // namespace rapid

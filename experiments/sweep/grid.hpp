@@ -1,0 +1,74 @@
+// A sweep's grid file (docs/sweeps.md §Grid files): which table cells to run (scenarios × datasets × algorithms ×
+// seeds), the config overrides they share, and how the reference agents behind the prior datasets
+// are trained. Loading validates everything strictly, so a typo fails before anything is written.
+//
+// Schema (JSON object; every key not listed is an error):
+//   "name"            string of [A-Za-z0-9._-]: the default sweep folder is results/<name>/
+//   "description"     optional string
+//   "scenarios"       non-empty array of scenario names (env_names()), no duplicates
+//   "datasets"        non-empty array of initial|medium|final|final+medium, no duplicates
+//   "algos"           non-empty array of algorithm names (algo_names()), no duplicates
+//   "seeds"           non-empty array of non-negative integers, no duplicates
+//   "config"          optional object: config-key overrides for every scenario
+//   "scenario_config" optional object: scenario → overrides applied after "config"
+//   "reference"       optional object {"seed": 1000, "transitions": 20000, "noise_std": 0.1}:
+//                     the reference DDPG agent's seed (not one of "seeds"), the transitions
+//                     collected per dataset and the exploration noise used while collecting
+//                     and optionally "steps": L, the reference's own training length (an
+//                     integer, or an object scenario → integer; default: the cells' steps)
+//   "profile"         optional "short" (default) or "flow": the config files cells start from
+//   "max_retries"     optional non-negative integer (default 2): extra attempts per failed job
+//   "jobs"            optional positive integer: worker processes when --jobs is not given
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "experiments/run/dataset_build.hpp"  // ReferenceSettings, the grid's "reference" object
+#include "experiments/run/run_config.hpp"     // kDefaultProfile
+
+namespace rapid {
+
+struct Grid {
+  std::string name;
+  std::string description;
+  std::vector<std::string> scenarios, datasets, algos;
+  std::vector<std::uint64_t> seeds;
+  std::string profile = kDefaultProfile;  // the config files the cells start from (run_config.hpp)
+  nlohmann::json config = nlohmann::json::object();
+  nlohmann::json scenario_config = nlohmann::json::object();
+  ReferenceSettings reference;
+  std::map<std::string, long> reference_steps;  // "reference"."steps" by scenario (absent: 0)
+  int max_retries = 2;
+  std::optional<int> jobs;
+  // The grid with every default spelled out, as written to SWEEP/grid.json. Kept as parsed (not
+  // regenerated from the fields) so numbers keep the exact spelling the user gave them.
+  nlohmann::json normalized;
+};
+
+
+// Reads and validates a grid file. Throws std::invalid_argument with one line
+// "grid PATH: FIELD: problem" (e.g. "grid quick.json: algos[2]: unknown algorithm 'sac'; …").
+Grid load_grid(const std::string& path);
+
+// The same validation on an already parsed document; `label` names it in messages.
+Grid parse_grid(const nlohmann::json& document, const std::string& label);
+
+// The overrides a cell of `scenario` gets: "config", then "scenario_config"[scenario] on top.
+nlohmann::json grid_overrides(const Grid& grid, const std::string& scenario);
+
+// The reference settings of `scenario`'s dataset build.
+ReferenceSettings reference_for(const Grid& grid, const std::string& scenario);
+
+// The resolved config of the grid's cells of `scenario`: its profile's file, then the overrides.
+nlohmann::json cell_config(const Grid& grid, const std::string& scenario);
+
+// Human-readable differences between two normalized grids, one per changed leaf, e.g.
+// "config.steps: 1500 → 2000" or "seeds: [0,1] → [0,1,2]". Empty when they are equal.
+std::vector<std::string> grid_differences(const nlohmann::json& before, const nlohmann::json& after);
+
+}  // namespace rapid

@@ -1,0 +1,34 @@
+// `rapid sweep --only`: which cells of the grid a sweep works on. Filters are comma-separated
+// key=value pairs over scenario, dataset, algo and seed; a key given twice (seed=0,seed=1) or a
+// value with alternatives (seed=0|1) accepts any of them; keys not given accept everything.
+// ddpg cells have no dataset: `dataset=none` selects them, any other dataset filter does not.
+// A selected cell pulls in the jobs it depends on (its scenario's reference and dataset jobs).
+#pragma once
+
+#include <cstdint>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "experiments/sweep/graph.hpp"
+#include "experiments/sweep/grid.hpp"
+
+namespace rapid {
+
+struct Selection {
+  std::set<std::string> scenarios, datasets, algos;
+  std::set<std::uint64_t> seeds;
+  std::string text;  // as given, for the manifest; empty = everything
+};
+
+// Throws std::invalid_argument("--only: …") for an unknown key, a value not in the grid, or a
+// selection that matches no job.
+Selection parse_selection(const std::string& text, const Grid& grid, const JobGraph& graph);
+
+// Whether a cell passes the filters (dataset-stage jobs are never selected directly).
+bool selects(const Selection& selection, const SweepJob& job);
+
+// Per job: selected, or a dependency of a selected job. Without filters, every job.
+std::vector<bool> selected_with_dependencies(const Selection& selection, const JobGraph& graph);
+
+}  // namespace rapid

@@ -1,0 +1,136 @@
+#include "experiments/sweep/state.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include "core/atomic_file.hpp"
+#include "core/hash.hpp"
+#include "experiments/run/job.hpp"
+#include "experiments/run/provenance.hpp"
+#include "experiments/run/run_config.hpp"
+
+namespace rapid {
+
+namespace fs = std::filesystem;
+
+SweepFolder make_sweep_folder(const fs::path& dir, Grid grid) {
+  SweepFolder folder;
+  folder.dir = dir;
+  folder.graph = build_job_graph(grid);
+  folder.grid = std::move(grid);
+  return folder;
+}
+
+SweepFolder open_sweep_folder(const fs::path& dir) {
+  if (!fs::is_directory(dir)) throw std::invalid_argument("'" + dir.string() + "' is not a folder");
+  const fs::path grid = dir / sweep_files::kGrid;
+  if (!fs::is_regular_file(grid))
+    throw std::invalid_argument("'" + dir.string() + "' is not a sweep folder (no " + sweep_files::kGrid + ")");
+  return make_sweep_folder(dir, load_grid(grid.string()));
+}
+
+std::string expected_cell_hash(const SweepFolder& folder, const SweepJob& cell) {
+  JobSpec spec;
+  spec.scenario = cell.scenario;
+  spec.algo = cell.algo;
+  spec.seed = cell.seed;
+  spec.dataset = cell.dataset;
+  if (!cell.dataset.empty()) {
+    spec.dataset_path = folder.path(cell_dataset_path(cell)).string();
+    if (!fs::is_regular_file(spec.dataset_path))
+      throw std::runtime_error("dataset " + cell_dataset_path(cell) + " is missing");
+  }
+  spec.config = cell_config(folder.grid, cell.scenario);
+  return job_config_hash(spec);
+}
+
+std::string dataset_stage_inputs_hash(const SweepFolder& folder, const SweepJob& job) {
+  const nlohmann::json inputs = {
+      {"scenario", job.scenario},
+      {"config", cell_config(folder.grid, job.scenario)},
+      {"reference", folder.grid.normalized.at("reference")},
+  };
+  return fnv1a_hex(inputs.dump());
+}
+
+std::optional<nlohmann::json> read_json_file(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) return std::nullopt;
+  std::stringstream text;
+  text << in.rdbuf();
+  nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded()) return std::nullopt;
+  return j;
+}
+
+void write_outcome(const SweepFolder& folder, const SweepJob& job, const Outcome& o) {
+  nlohmann::json j = {{"job", job.id()},         {"state", o.state},   {"attempts", o.attempts},
+                      {"exit_code", o.exit_code}, {"signal", o.signal}, {"error", o.error}};
+  if (!o.inputs_hash.empty()) j["inputs_hash"] = o.inputs_hash;
+  if (!o.marker_hash.empty()) j["marker_hash"] = o.marker_hash;
+  fs::create_directories(folder.path(job.dir));
+  write_file_atomic(folder.path(job.dir + "/" + sweep_files::kOutcome).string(), j.dump(1));
+}
+
+std::optional<Outcome> read_outcome(const SweepFolder& folder, const SweepJob& job) {
+  const auto j = read_json_file(folder.path(job.dir + "/" + sweep_files::kOutcome));
+  if (!j || !j->is_object()) return std::nullopt;
+  Outcome o;
+  o.state = j->value("state", "");
+  o.attempts = j->value("attempts", 0);
+  o.exit_code = j->value("exit_code", -1);
+  o.signal = j->value("signal", 0);
+  o.error = j->value("error", "");
+  o.inputs_hash = j->value("inputs_hash", "");
+  o.marker_hash = j->value("marker_hash", "");
+  return o;
+}
+
+namespace {
+
+bool says_ok(const std::optional<nlohmann::json>& j) {
+  return j && j->is_object() && j->contains("status") && (*j)["status"] == "ok";
+}
+
+std::string marker_config_hash(const std::optional<nlohmann::json>& marker) {
+  if (!marker || !marker->is_object() || !marker->contains("config_hash")) return "";
+  const auto& h = (*marker)["config_hash"];
+  return h.is_string() ? h.get<std::string>() : h.dump();
+}
+
+}  // namespace
+
+bool job_is_done(const SweepFolder& folder, const SweepJob& job) {
+  const auto marker = read_json_file(folder.path(job_marker_path(job)));
+  if (!says_ok(marker)) return false;
+  if (job.kind == JobKind::kCell) {
+    try {
+      return marker->contains("config_hash") && (*marker)["config_hash"] == expected_cell_hash(folder, job);
+    } catch (const std::runtime_error&) {
+      return false;  // its dataset is gone: the record cannot be checked
+    }
+  }
+  const auto outcome = read_outcome(folder, job);
+  return outcome && outcome->state == "ok" && outcome->inputs_hash == dataset_stage_inputs_hash(folder, job) &&
+         outcome->marker_hash == marker_config_hash(marker);
+}
+
+void mark_dataset_stage_done(const SweepFolder& folder, const SweepJob& job, int attempts) {
+  Outcome o;
+  o.state = "ok";
+  o.attempts = attempts;
+  o.exit_code = 0;
+  o.inputs_hash = dataset_stage_inputs_hash(folder, job);
+  o.marker_hash = marker_config_hash(read_json_file(folder.path(job_marker_path(job))));
+  write_outcome(folder, job, o);
+}
+
+std::string last_log_line(const SweepFolder& folder, const SweepJob& job) {
+  std::ifstream in(folder.path(job.dir + "/" + sweep_files::kLog));
+  std::string line, last;
+  while (std::getline(in, line))
+    if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
+  return last;
+}
+
+}  // namespace rapid
