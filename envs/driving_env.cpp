@@ -172,7 +172,8 @@ StepResult DrivingEnv::step(const ConstVecRef& action, VecRef obs) {
     r.info.collision = collision;
     r.info.ego_speed = ego_.speed;
     r.info.lane_change_failed = failed;
-    r.reward = reward(collision, r.info.lane_changes > 0, failed);
+    const driving::RewardTerms terms = reward(collision, r.info.lane_changes > 0, failed);
+    r.reward = static_cast<float>(terms.total);
     r.terminated = collision;
     const Road::Edge& now = road_.edge(ego_.edge);
     const bool road_end = now.exit && ego_.pos > now.length - kRoadEndMargin;
@@ -256,17 +257,22 @@ bool DrivingEnv::ego_at_dead_end() const {
   return end != Road::kNoEnd && end - ego_.progress < 0.01;
 }
 
-float DrivingEnv::reward(bool collision, bool changed_lane, bool failed_change) const {
-  const auto& w = weights_;
-  if (collision) return static_cast<float>(-w.collision);
-  const double v = ego_.speed;
-  double r = driving::velocity_term(v, config_.settings.desired_speed) - w.offset;
+driving::RewardTerms DrivingEnv::reward(bool collision, bool changed_lane, bool failed_change) const {
   const Neighbor& lead = ego_.leader[kCurrent];
-  if (lead.present) r -= w.gap * idm_.shortfall(lead.gap, v, v - lead.speed);
   const Neighbor& follow = ego_.follower[kCurrent];
-  if (changed_lane && follow.present) r -= w.gap * idm_.shortfall(follow.gap, follow.speed, follow.speed - v);
-  if (failed_change) r -= w.failed_lane_change;
-  return static_cast<float>(r);
+  driving::RewardInputs in;
+  in.speed = ego_.speed;
+  in.desired_speed = config_.settings.desired_speed;
+  in.leader = lead.present;
+  in.leader_gap = lead.gap;
+  in.leader_speed = lead.speed;
+  in.follower = follow.present;
+  in.follower_gap = follow.gap;
+  in.follower_speed = follow.speed;
+  in.collision = collision;
+  in.changed_lane = changed_lane;
+  in.failed_lane_change = failed_change;
+  return driving::reward_terms(weights_, idm_, in);
 }
 
 void DrivingEnv::observe(VecRef obs) const {

@@ -114,7 +114,9 @@ class DrivingEnv : public Env {
   void read_neighbors(int side, int mode_leaders, int mode_followers);
   bool ego_collided() const;
   bool ego_at_dead_end() const;
-  float reward(bool collision, bool changed_lane, bool failed_change) const;
+  // Out of line and opaque to the optimiser, so the reward's arithmetic is the same code whether
+  // or not the caller reads the terms (a recorded episode gets the very rewards of an unrecorded one).
+  [[gnu::noipa]] driving::RewardTerms reward(bool collision, bool changed_lane, bool failed_change) const;
   void observe(VecRef obs) const;
 
   DrivingConfig config_;
