@@ -8,15 +8,17 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <libsumo/libsumo.h>
 #include <sstream>
 #include <stdexcept>
 
+#include "envs/sumo_api.hpp"
+
 namespace rapid {
+RAPID_SUMO_BACKEND_BEGIN
 
 namespace {
-using libsumo::Simulation;
-using libsumo::Vehicle;
+using sumo_api::Simulation;
+using sumo_api::Vehicle;
 
 // All vTypes share minGap 2.5 m; libsumo reports leader and follower distances minus it.
 constexpr double kMinGap = 2.5;
@@ -301,4 +303,5 @@ void DrivingEnv::observe(VecRef obs) const {
   write_features(obs.data() + kCommonObs);
 }
 
+RAPID_SUMO_BACKEND_END
 }  // namespace rapid

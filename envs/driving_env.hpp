@@ -18,6 +18,7 @@
 //   then the scenario's features.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,8 @@
 #include "envs/sumo_session.hpp"
 
 namespace rapid {
+
+RAPID_SUMO_BACKEND_BEGIN
 
 // The scenario's design (geometry, sensing, control limits) plus the settings a config may change.
 struct DrivingConfig {
@@ -63,6 +66,13 @@ class DrivingEnv : public Env {
   void reset(std::uint64_t seed, VecRef obs) override;
   StepResult step(const ConstVecRef& action, VecRef obs) override;
   void set_builtin_driver(bool on) override { builtin_ = on; }
+
+  // Runs SUMO as `binary` with `extra_args` appended to its command line, from the next reset on
+  // (the libtraci build runs sumo-gui this way: envs/gui_env.cpp).
+  void set_sumo_binary(std::string binary, std::vector<std::string> extra_args) {
+    session_config_.binary = std::move(binary);
+    session_config_.extra_args = std::move(extra_args);
+  }
 
   // Advances the running simulation by `sumo_steps` SUMO steps and nothing else: no ego command,
   // no state read, no observation or reward. This is the raw cost of the network and traffic the
@@ -135,4 +145,9 @@ class DrivingEnv : public Env {
   std::string route_file_;  // this env's routes with the configured inflows (a temporary file)
 };
 
+// lane-drop, cut-in or merge in this backend's build (throws std::invalid_argument for any other
+// name or bad settings).
+std::unique_ptr<DrivingEnv> make_driving_env(const std::string& name, const ScenarioSettings& settings);
+
+RAPID_SUMO_BACKEND_END
 }  // namespace rapid
