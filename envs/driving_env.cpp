@@ -124,6 +124,7 @@ void DrivingEnv::reset(std::uint64_t seed, VecRef obs) {
     since_lane_change_ = settings.lane_change_interval;
     read_state();
     after_observe();
+    if (trace_ != nullptr) record_reset(seed);
   } catch (...) {
     rethrow_with_context("scenario '" + s + "': reset(" + std::to_string(seed) + ")");
   }
@@ -138,6 +139,7 @@ StepResult DrivingEnv::step(const ConstVecRef& action, VecRef obs) {
   try {
     const Road::Edge& edge = road_.edge(ego_.edge);
     const int lane_before = ego_.global_lane;
+    const double speed_before = ego_.speed;
     const double decision_time = config_.settings.action_repeat * config_.step_length;
     bool commanded = false, failed = false;
     double accel = 0.0;
@@ -180,6 +182,7 @@ StepResult DrivingEnv::step(const ConstVecRef& action, VecRef obs) {
     const Road::Edge& now = road_.edge(ego_.edge);
     const bool road_end = now.exit && ego_.pos > now.length - kRoadEndMargin;
     r.truncated = !r.terminated && (t_ >= config_.settings.horizon || road_end);
+    if (trace_ != nullptr) record_decision(action, speed_before, r, terms);
   } catch (...) {
     rethrow_with_context("scenario '" + config_.scenario + "': step " + std::to_string(t_));
   }

@@ -31,6 +31,9 @@
 
 namespace rapid {
 
+struct Trace;
+struct TraceSnapshot;
+
 RAPID_SUMO_BACKEND_BEGIN
 
 // The scenario's design (geometry, sensing, control limits) plus the settings a config may change.
@@ -66,6 +69,9 @@ class DrivingEnv : public Env {
   void reset(std::uint64_t seed, VecRef obs) override;
   StepResult step(const ConstVecRef& action, VecRef obs) override;
   void set_builtin_driver(bool on) override { builtin_ = on; }
+  // Recording (envs/driving_trace.cpp): with a trace attached, reset() adds an episode (and the
+  // road, once) and step() a decision; with none, neither reads anything extra from SUMO.
+  void record(Trace* trace) override;
 
   // Runs SUMO as `binary` with `extra_args` appended to its command line, from the next reset on
   // (the libtraci build runs sumo-gui this way: envs/gui_env.cpp).
@@ -127,6 +133,11 @@ class DrivingEnv : public Env {
   // Out of line and opaque to the optimiser, so the reward's arithmetic is the same code whether
   // or not the caller reads the terms (a recorded episode gets the very rewards of an unrecorded one).
   [[gnu::noipa]] driving::RewardTerms reward(bool collision, bool changed_lane, bool failed_change) const;
+  void record_road();
+  void record_reset(std::uint64_t seed);
+  void record_snapshot(TraceSnapshot& snapshot) const;
+  void record_decision(const ConstVecRef& action, double speed_before, const StepResult& r,
+                       const driving::RewardTerms& terms);
   void observe(VecRef obs) const;
 
   DrivingConfig config_;
@@ -143,6 +154,7 @@ class DrivingEnv : public Env {
   driving::IdmGap idm_;
   driving::RewardWeights weights_;
   std::string route_file_;  // this env's routes with the configured inflows (a temporary file)
+  Trace* trace_ = nullptr;  // recording into it when set
 };
 
 // lane-drop, cut-in or merge in this backend's build (throws std::invalid_argument for any other

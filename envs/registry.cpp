@@ -11,6 +11,8 @@ void Env::set_builtin_driver(bool) {
   throw std::invalid_argument("scenario '" + name() + "' has no built-in driver");
 }
 
+void Env::record(Trace*) { throw std::invalid_argument("scenario '" + name() + "' has no road or traffic to record"); }
+
 const std::vector<std::string>& env_names() {
   static const std::vector<std::string> names = {"lane-drop", "cut-in", "merge", "pendulum"};
   return names;
