@@ -1,0 +1,94 @@
+#include "experiments/rollout_watch.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.hpp"
+#include "experiments/cli_errors.hpp"
+#include "experiments/run_config.hpp"
+
+namespace rapid {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The folder a file is to be written into must exist (nothing is created on the user's behalf).
+void check_output_file(const std::string& option, const std::string& path) {
+  if (path.empty()) throw UsageError(option + ": empty file name");
+  const fs::path p(path);
+  if (fs::is_directory(p)) throw UsageError(option + ": '" + path + "' is a folder, expected a file name");
+  const fs::path folder = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  if (!fs::is_directory(folder)) throw UsageError(option + ": folder '" + folder.string() + "' does not exist");
+}
+
+// The run record behind --settings-from: RUN/record.json or the file itself.
+nlohmann::json read_run_record(const std::string& from) {
+  const fs::path path = fs::is_directory(from) ? fs::path(from) / "record.json" : fs::path(from);
+  std::ifstream in(path);
+  if (!in) throw UsageError("--settings-from: cannot read '" + path.string() + "'");
+  nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded() || !j.is_object()) throw UsageError("--settings-from: '" + path.string() + "' is not a JSON object");
+  if (j.value("schema", "") != "rapid.run/1")
+    throw UsageError("--settings-from: '" + path.string() + "' is not a run record (schema rapid.run/1)");
+  return j;
+}
+
+}  // namespace
+
+std::optional<ScenarioSettings> rollout_settings(const std::string& scenario, const WatchOptions& w) {
+  if (w.settings_from.empty()) return is_driving_scenario(scenario) ? std::optional(default_scenario_settings(scenario)) : std::nullopt;
+  if (!is_driving_scenario(scenario))
+    throw UsageError("--settings-from: scenario '" + scenario + "' has no scenario settings");
+  const nlohmann::json record = read_run_record(w.settings_from);
+  const nlohmann::json* cell = record.contains("cell") && record["cell"].is_object() ? &record["cell"] : nullptr;
+  const std::string ran = cell ? cell->value("scenario", "") : "";
+  if (ran != scenario)
+    throw UsageError("--settings-from: the run is of scenario '" + ran + "', not '" + scenario + "'");
+  if (!record.contains("config") || !record["config"].is_object())
+    throw UsageError("--settings-from: the run record has no config");
+  try {
+    const RunConfig config = run_config_from_json(record["config"]);
+    return config.scenario ? *config.scenario : default_scenario_settings(scenario);
+  } catch (const std::exception& e) {
+    throw UsageError(std::string("--settings-from: ") + e.what());
+  }
+}
+
+std::unique_ptr<Env> make_watched_env(const std::string& scenario, const WatchOptions& w) {
+  const bool driving = is_driving_scenario(scenario);
+  if (!driving && std::find(env_names().begin(), env_names().end(), scenario) == env_names().end()) {
+    try {
+      make_env(scenario);  // throws the one-line "unknown scenario" message
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--scenario: ") + e.what());
+    }
+  }
+  if (!w.record.empty()) {
+    if (!driving) throw UsageError("--record: scenario '" + scenario + "' has no road or traffic to record");
+    check_output_file("--record", w.record);
+  }
+  if (!w.gui && !w.gui_options.screenshot.empty()) throw UsageError("--screenshot: needs --gui");
+  if (w.gui) {
+    if (!driving) throw UsageError("--gui: scenario '" + scenario + "' does not run in SUMO");
+    if (!w.gui_options.screenshot.empty()) {
+      check_output_file("--screenshot", w.gui_options.screenshot);
+      if (fs::path(w.gui_options.screenshot).extension() != ".png")
+        throw UsageError("--screenshot: '" + w.gui_options.screenshot + "' must end in .png");
+    }
+    if (const std::string why = gui_unavailable_reason(); !why.empty()) throw UsageError("--gui: " + why);
+  }
+  const std::optional<ScenarioSettings> settings = rollout_settings(scenario, w);
+  try {
+    if (w.gui) return make_gui_env(scenario, *settings, w.gui_options);
+    return settings ? make_env(scenario, *settings) : make_env(scenario);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string(w.settings_from.empty() ? "--scenario: " : "--settings-from: ") + e.what());
+  }
+}
+
+void write_trace_file(const std::string& path, const Trace& trace) { write_file_atomic(path, trace_to_json(trace)); }
+
+}  // namespace rapid

@@ -1,0 +1,34 @@
+// Watching a rollout (`rapid rollout --record / --gui / --settings-from`, issue #19): the checks of
+// those options, the env they ask for, and writing the trace. Every check runs before anything is
+// simulated or written, and fails with a UsageError naming the option (exit 2).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "envs/env.hpp"
+#include "envs/gui_env.hpp"
+#include "envs/trace.hpp"
+
+namespace rapid {
+
+struct WatchOptions {
+  std::string record;         // --record FILE: the trace ("" = off)
+  std::string settings_from;  // --settings-from RUN: a run folder or its record.json
+  bool gui = false;           // --gui
+  GuiOptions gui_options;     // --gui-delay, --screenshot, --screenshot-at
+};
+
+// The scenario settings a rollout uses: the run's (its record's config) with --settings-from, else
+// the scenario's defaults (nullopt: make_env(scenario) decides, the pendulum included).
+std::optional<ScenarioSettings> rollout_settings(const std::string& scenario, const WatchOptions& w);
+
+// Validates the watch options for `scenario` and makes the env: libsumo's, or sumo-gui's with
+// --gui. Throws UsageError ("--record: …", "--gui: …", …) without having written anything.
+std::unique_ptr<Env> make_watched_env(const std::string& scenario, const WatchOptions& w);
+
+// Writes the trace atomically (throws std::runtime_error naming the path).
+void write_trace_file(const std::string& path, const Trace& trace);
+
+}  // namespace rapid
