@@ -18,6 +18,8 @@ packages=(
   libhdf5-dev hdf5-tools   # HDF5 C++ API; h5dump for inspecting datasets
   libomp-dev libgtest-dev libgmock-dev libbenchmark-dev  # GTestConfig.cmake needs gmock
   python3-matplotlib       # figures (scripts/plot runs Debian's /usr/bin/python3)
+  python3-pil              # animations of recorded episodes (scripts/plot animate writes GIFs)
+  xvfb xauth libgl1-mesa-dri  # a headless X server with software OpenGL for the sumo-gui test
 )
 
 missing=()
