@@ -237,13 +237,14 @@ class Animator:
         fig_w, fig_h = self.fig.get_size_inches()
         self.aspect = (box.width * fig_w) / (box.height * fig_h)  # road view: width / height, metres alike
         self.strips = [self.fig.add_subplot(grid[i]) for i in (1, 2, 3)]
-        self._draw_road(PolyCollection)
+        self.road_artists = self._draw_road(PolyCollection)
         self._draw_strips()
         self.others = PolyCollection([], facecolors=[], edgecolors="#1b2a3a", linewidths=0.6, zorder=3)
         self.ego = PolyCollection([], facecolors="#e0201b", edgecolors="black", linewidths=1.2, zorder=4)
         self.ax.add_collection(self.others)
         self.ax.add_collection(self.ego)
-        self.labels = []
+        self.title = self.fig.text(box.x0, box.y1 + 0.012, "", fontsize=9, ha="left", va="bottom")
+        self.background = None  # the figure without what changes per frame, drawn once
 
     def _draw_road(self, PolyCollection):
         ax = self.ax
@@ -265,20 +266,22 @@ class Animator:
                 else:
                     dashes.append(left)
         junctions = [[tuple(p) for p in j["shape"]] for j in self.trace["junctions"] if len(j["shape"]) >= 3]
-        ax.add_collection(PolyCollection(surface + junctions, facecolors="#6b6f73", edgecolors="#6b6f73",
-                                         linewidths=0.5, zorder=1))
+        artists = [ax.add_collection(PolyCollection(surface + junctions, facecolors="#6b6f73", edgecolors="#6b6f73",
+                                                    linewidths=0.5, zorder=1))]
         for line in edges:
             xs, ys = zip(*line)
-            ax.plot(xs, ys, color="white", linewidth=1.2, zorder=2, solid_capstyle="butt")
+            artists += ax.plot(xs, ys, color="white", linewidth=1.2, zorder=2, solid_capstyle="butt")
         for line in dashes:
             xs, ys = zip(*line)
-            ax.plot(xs, ys, color="white", linewidth=0.9, zorder=2, dashes=(6, 6))
-        ax.set_aspect("equal", adjustable="box")
+            artists += ax.plot(xs, ys, color="white", linewidth=0.9, zorder=2, dashes=(6, 6))
+        # Equal scales come from the limits (draw() keeps their ratio at the box's), not from
+        # set_aspect, so the box never moves between frames.
         ax.set_xticks([])
         ax.set_yticks([])
         for spine in ax.spines.values():
             spine.set_visible(False)
         self.centre_lines = [[tuple(p) for p in lane["shape"]] for edge in self.trace["road"] for lane in edge["lanes"]]
+        return artists
 
     def _draw_strips(self):
         decisions = self.ep["decisions"]
@@ -353,15 +356,32 @@ class Animator:
             end = "  COLLISION" if last["collision"] else ("  (end)" if last["truncated"] else "")
         label = SCENARIO_LABEL.get(self.trace["scenario"], self.trace["scenario"])
         policy = os.path.basename(self.trace["policy"])
-        self.ax.set_title(f"{label} · policy {policy} · episode {self.ep['index']} · t = {t:5.1f} s · "
-                          f"lane {ego[2]} · {ego[6]:4.1f} m/s · return {ret:6.1f}{end}", fontsize=9, loc="left")
+        self.title.set_text(f"{label} · policy {policy} · episode {self.ep['index']} · t = {t:5.1f} s · "
+                            f"lane {ego[2]} · {ego[6]:4.1f} m/s · return {ret:6.1f}{end}")
 
     def image(self, k):
+        """Frame k as a PIL image. The strips' axes, ticks and curves are drawn once; a frame redraws
+        only the road view, the title and the cursors on top (blitting: most of the cost of a
+        matplotlib draw is in axes and tick labels)."""
         from PIL import Image
 
+        canvas = self.fig.canvas
+        if self.background is None:
+            moving = [self.ax, self.title] + self.cursors
+            for a in moving:
+                a.set_visible(False)
+            canvas.draw()
+            self.background = canvas.copy_from_bbox(self.fig.bbox)
+            for a in moving:
+                a.set_visible(True)
         self.draw(k)
-        self.fig.canvas.draw()
-        return Image.frombuffer("RGBA", self.fig.canvas.get_width_height(), self.fig.canvas.buffer_rgba()).convert("RGB")
+        canvas.restore_region(self.background)
+        for a in [self.ax.patch] + self.road_artists + [self.others, self.ego]:
+            self.ax.draw_artist(a)
+        self.fig.draw_artist(self.title)
+        for c in self.cursors:
+            c.axes.draw_artist(c)
+        return Image.frombuffer("RGBA", canvas.get_width_height(), canvas.buffer_rgba()).convert("RGB")
 
 
 def _quantized(images):
