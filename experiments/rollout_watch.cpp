@@ -1,6 +1,5 @@
 #include "experiments/rollout_watch.hpp"
 
-#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -38,10 +37,8 @@ nlohmann::json read_run_record(const std::string& from) {
 
 }  // namespace
 
-std::optional<ScenarioSettings> rollout_settings(const std::string& scenario, const WatchOptions& w) {
-  if (w.settings_from.empty()) return is_driving_scenario(scenario) ? std::optional(default_scenario_settings(scenario)) : std::nullopt;
-  if (!is_driving_scenario(scenario))
-    throw UsageError("--settings-from: scenario '" + scenario + "' has no scenario settings");
+ScenarioSettings rollout_settings(const std::string& scenario, const WatchOptions& w) {
+  if (w.settings_from.empty()) return default_scenario_settings(scenario);
   const nlohmann::json record = read_run_record(w.settings_from);
   const nlohmann::json* cell = record.contains("cell") && record["cell"].is_object() ? &record["cell"] : nullptr;
   const std::string ran = cell ? cell->value("scenario", "") : "";
@@ -58,21 +55,21 @@ std::optional<ScenarioSettings> rollout_settings(const std::string& scenario, co
 }
 
 std::unique_ptr<Env> make_watched_env(const std::string& scenario, const WatchOptions& w) {
-  const bool driving = is_driving_scenario(scenario);
-  if (!driving && std::find(env_names().begin(), env_names().end(), scenario) == env_names().end()) {
+  if (!w.gui && !w.gui_options.screenshot.empty()) throw UsageError("--screenshot: needs --gui");
+  if (!is_driving_scenario(scenario)) {
+    std::unique_ptr<Env> env;
     try {
-      make_env(scenario);  // throws the one-line "unknown scenario" message
+      env = make_env(scenario);  // the pendulum, or the one-line "unknown scenario" error
     } catch (const std::invalid_argument& e) {
       throw UsageError(std::string("--scenario: ") + e.what());
     }
+    if (!w.record.empty()) throw UsageError("--record: scenario '" + scenario + "' has no road or traffic to record");
+    if (w.gui) throw UsageError("--gui: scenario '" + scenario + "' does not run in SUMO");
+    if (!w.settings_from.empty()) throw UsageError("--settings-from: scenario '" + scenario + "' has no scenario settings");
+    return env;
   }
-  if (!w.record.empty()) {
-    if (!driving) throw UsageError("--record: scenario '" + scenario + "' has no road or traffic to record");
-    check_output_file("--record", w.record);
-  }
-  if (!w.gui && !w.gui_options.screenshot.empty()) throw UsageError("--screenshot: needs --gui");
+  if (!w.record.empty()) check_output_file("--record", w.record);
   if (w.gui) {
-    if (!driving) throw UsageError("--gui: scenario '" + scenario + "' does not run in SUMO");
     if (!w.gui_options.screenshot.empty()) {
       check_output_file("--screenshot", w.gui_options.screenshot);
       if (fs::path(w.gui_options.screenshot).extension() != ".png")
@@ -80,10 +77,9 @@ std::unique_ptr<Env> make_watched_env(const std::string& scenario, const WatchOp
     }
     if (const std::string why = gui_unavailable_reason(); !why.empty()) throw UsageError("--gui: " + why);
   }
-  const std::optional<ScenarioSettings> settings = rollout_settings(scenario, w);
+  const ScenarioSettings settings = rollout_settings(scenario, w);
   try {
-    if (w.gui) return make_gui_env(scenario, *settings, w.gui_options);
-    return settings ? make_env(scenario, *settings) : make_env(scenario);
+    return w.gui ? make_gui_env(scenario, settings, w.gui_options) : make_env(scenario, settings);
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string(w.settings_from.empty() ? "--scenario: " : "--settings-from: ") + e.what());
   }

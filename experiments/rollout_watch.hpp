@@ -4,7 +4,6 @@
 #pragma once
 
 #include <memory>
-#include <optional>
 #include <string>
 
 #include "envs/env.hpp"
@@ -20,9 +19,9 @@ struct WatchOptions {
   GuiOptions gui_options;     // --gui-delay, --screenshot, --screenshot-at
 };
 
-// The scenario settings a rollout uses: the run's (its record's config) with --settings-from, else
-// the scenario's defaults (nullopt: make_env(scenario) decides, the pendulum included).
-std::optional<ScenarioSettings> rollout_settings(const std::string& scenario, const WatchOptions& w);
+// The settings a rollout of a driving scenario uses: the run's (its record's config) with
+// --settings-from, else the scenario's `short` defaults. Throws UsageError("--settings-from: …").
+ScenarioSettings rollout_settings(const std::string& scenario, const WatchOptions& w);
 
 // Validates the watch options for `scenario` and makes the env: libsumo's, or sumo-gui's with
 // --gui. Throws UsageError ("--record: …", "--gui: …", …) without having written anything.
