@@ -9,6 +9,7 @@
 #include "experiments/report_claims.hpp"
 #include "experiments/report_tables.hpp"
 #include "experiments/summary.hpp"
+#include "experiments/summary_animations.hpp"
 #include "experiments/summary_plot.hpp"
 
 namespace rapid {
@@ -21,6 +22,7 @@ struct SummarizeOptions {
   std::string dir;
   std::string out;  // default: the sweep folder
   bool no_plots = false;
+  bool no_animations = false;
 };
 
 // Returns false when the plot script failed (the tables are written either way).
@@ -46,7 +48,7 @@ bool draw_figures(const fs::path& summary_json, const fs::path& out) {
 
 }  // namespace
 
-int write_reports(const std::string& sweep_dir, const std::string& out_dir, bool plots) {
+int write_reports(const std::string& sweep_dir, const std::string& out_dir, bool plots, bool animations) {
   Summary summary;
   try {
     summary = build_summary(sweep_dir);
@@ -75,12 +77,14 @@ int write_reports(const std::string& sweep_dir, const std::string& out_dir, bool
   for (const std::string& w : summary.warnings) std::cout << "warning: " << w << "\n";
   for (const ClaimResult& c : summary.claims) std::cout << "  " << c.id << " " << c.verdict << ": " << c.reason << "\n";
   if (!plots) return kExitOk;
-  return draw_figures(summary_json, out) ? kExitOk : kExitFailed;
+  const bool figures_ok = draw_figures(summary_json, out);
+  if (animations) write_animations(summary, out, std::cout);
+  return figures_ok ? kExitOk : kExitFailed;
 }
 
 namespace {
 
-int summarize_command(const SummarizeOptions& o) { return write_reports(o.dir, o.out, !o.no_plots); }
+int summarize_command(const SummarizeOptions& o) { return write_reports(o.dir, o.out, !o.no_plots, !o.no_animations); }
 
 }  // namespace
 
@@ -90,7 +94,8 @@ Command add_summarize_command(CLI::App& parent) {
       "summarize", "Write Table I (md, tex, csv), summary.json, claims.md and Figures 2-3 from a sweep folder");
   sub->add_option("sweep_dir", o->dir, "the sweep folder (results/<grid name>)")->required();
   sub->add_option("--out", o->out, "write the reports here instead of into the sweep folder");
-  sub->add_flag("--no-plots", o->no_plots, "skip scripts/plot (figures)");
+  sub->add_flag("--no-plots", o->no_plots, "skip scripts/plot (figures and animations)");
+  sub->add_flag("--no-animations", o->no_animations, "skip the best and worst cells' animations (docs/traces.md)");
   return {sub, [o] { return summarize_command(*o); }};
 }
 

@@ -135,8 +135,9 @@ Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptio
 nlohmann::json summary_to_json(const Summary& summary);
 
 // Writes table.md, table.tex, table.csv, summary.json and claims.md for `sweep_dir` into `out_dir`
-// (default: the sweep folder) and, with `plots`, Figures 2–3 through scripts/plot. Returns the
+// (default: the sweep folder) and, with `plots`, Figures 2–3 through scripts/plot, and with
+// `animations` too, the best and worst cell's animations (summary_animations.hpp). Returns the
 // exit code of `rapid summarize` (1 when only the figures failed). Defined in cmd_summarize.cpp.
-int write_reports(const std::string& sweep_dir, const std::string& out_dir, bool plots);
+int write_reports(const std::string& sweep_dir, const std::string& out_dir, bool plots, bool animations = true);
 
 }  // namespace rapid
