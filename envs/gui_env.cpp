@@ -117,7 +117,9 @@ class GuiEnv final : public Env {
 
   void request_screenshot() {
     const fs::path target = fs::absolute(options_.screenshot);
-    tmp_ = target.parent_path() / ("." + target.stem().string() + ".tmp." + std::to_string(::getpid()) + ".png");
+    std::string name = target.stem().string();
+    name += ".tmp." + std::to_string(::getpid()) + ".png";  // sumo-gui picks the format by extension
+    tmp_ = target.parent_path() / name;
     fs::remove(tmp_);
     try {
       GUI::screenshot(kView, tmp_.string(), options_.window_width, options_.window_height);

@@ -63,7 +63,10 @@ class SummaryAnimations : public ::testing::Test {
 };
 
 TEST_F(SummaryAnimations, PicksTheBestAndWorstCellOfEachDrivingScenario) {
-  const Summary summary = build_summary(sweep, {.dataset_stats = false, .claims = false});
+  SummaryOptions options;
+  options.dataset_stats = false;
+  options.claims = false;
+  const Summary summary = build_summary(sweep, options);
   const std::vector<AnimationPick> picks = pick_animation_cells(summary);
   ASSERT_EQ(picks.size(), 2u) << "the pendulum has nothing to animate";
   EXPECT_EQ(picks[0].scenario, "merge");
