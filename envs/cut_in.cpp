@@ -1,11 +1,12 @@
 #include "envs/cut_in.hpp"
 
-#include <libsumo/libsumo.h>
+#include "envs/sumo_api.hpp"
 
 namespace rapid {
+RAPID_SUMO_BACKEND_BEGIN
 
 namespace {
-using libsumo::Vehicle;
+using sumo_api::Vehicle;
 
 DrivingConfig cut_in_config(const ScenarioSettings& settings) {
   DrivingConfig c;
@@ -82,4 +83,5 @@ void CutInEnv::after_observe() {
   }
 }
 
+RAPID_SUMO_BACKEND_END
 }  // namespace rapid

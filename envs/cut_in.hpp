@@ -9,6 +9,7 @@
 #include "envs/driving_env.hpp"
 
 namespace rapid {
+RAPID_SUMO_BACKEND_BEGIN
 
 class CutInEnv final : public DrivingEnv {
  public:
@@ -32,4 +33,5 @@ class CutInEnv final : public DrivingEnv {
   int completed_ = 0;
 };
 
+RAPID_SUMO_BACKEND_END
 }  // namespace rapid

@@ -8,15 +8,17 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <libsumo/libsumo.h>
 #include <sstream>
 #include <stdexcept>
 
+#include "envs/sumo_api.hpp"
+
 namespace rapid {
+RAPID_SUMO_BACKEND_BEGIN
 
 namespace {
-using libsumo::Simulation;
-using libsumo::Vehicle;
+using sumo_api::Simulation;
+using sumo_api::Vehicle;
 
 // All vTypes share minGap 2.5 m; libsumo reports leader and follower distances minus it.
 constexpr double kMinGap = 2.5;
@@ -122,6 +124,7 @@ void DrivingEnv::reset(std::uint64_t seed, VecRef obs) {
     since_lane_change_ = settings.lane_change_interval;
     read_state();
     after_observe();
+    if (trace_ != nullptr) record_reset(seed);
   } catch (...) {
     rethrow_with_context("scenario '" + s + "': reset(" + std::to_string(seed) + ")");
   }
@@ -136,6 +139,7 @@ StepResult DrivingEnv::step(const ConstVecRef& action, VecRef obs) {
   try {
     const Road::Edge& edge = road_.edge(ego_.edge);
     const int lane_before = ego_.global_lane;
+    const double speed_before = ego_.speed;
     const double decision_time = config_.settings.action_repeat * config_.step_length;
     bool commanded = false, failed = false;
     double accel = 0.0;
@@ -172,11 +176,13 @@ StepResult DrivingEnv::step(const ConstVecRef& action, VecRef obs) {
     r.info.collision = collision;
     r.info.ego_speed = ego_.speed;
     r.info.lane_change_failed = failed;
-    r.reward = reward(collision, r.info.lane_changes > 0, failed);
+    const driving::RewardTerms terms = reward(collision, r.info.lane_changes > 0, failed);
+    r.reward = static_cast<float>(terms.total);
     r.terminated = collision;
     const Road::Edge& now = road_.edge(ego_.edge);
     const bool road_end = now.exit && ego_.pos > now.length - kRoadEndMargin;
     r.truncated = !r.terminated && (t_ >= config_.settings.horizon || road_end);
+    if (trace_ != nullptr) record_decision(action, speed_before, r, terms);
   } catch (...) {
     rethrow_with_context("scenario '" + config_.scenario + "': step " + std::to_string(t_));
   }
@@ -256,17 +262,22 @@ bool DrivingEnv::ego_at_dead_end() const {
   return end != Road::kNoEnd && end - ego_.progress < 0.01;
 }
 
-float DrivingEnv::reward(bool collision, bool changed_lane, bool failed_change) const {
-  const auto& w = weights_;
-  if (collision) return static_cast<float>(-w.collision);
-  const double v = ego_.speed;
-  double r = driving::velocity_term(v, config_.settings.desired_speed) - w.offset;
+driving::RewardTerms DrivingEnv::reward(bool collision, bool changed_lane, bool failed_change) const {
   const Neighbor& lead = ego_.leader[kCurrent];
-  if (lead.present) r -= w.gap * idm_.shortfall(lead.gap, v, v - lead.speed);
   const Neighbor& follow = ego_.follower[kCurrent];
-  if (changed_lane && follow.present) r -= w.gap * idm_.shortfall(follow.gap, follow.speed, follow.speed - v);
-  if (failed_change) r -= w.failed_lane_change;
-  return static_cast<float>(r);
+  driving::RewardInputs in;
+  in.speed = ego_.speed;
+  in.desired_speed = config_.settings.desired_speed;
+  in.leader = lead.present;
+  in.leader_gap = lead.gap;
+  in.leader_speed = lead.speed;
+  in.follower = follow.present;
+  in.follower_gap = follow.gap;
+  in.follower_speed = follow.speed;
+  in.collision = collision;
+  in.changed_lane = changed_lane;
+  in.failed_lane_change = failed_change;
+  return driving::reward_terms(weights_, idm_, in);
 }
 
 void DrivingEnv::observe(VecRef obs) const {
@@ -295,4 +306,5 @@ void DrivingEnv::observe(VecRef obs) const {
   write_features(obs.data() + kCommonObs);
 }
 
+RAPID_SUMO_BACKEND_END
 }  // namespace rapid

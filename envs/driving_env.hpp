@@ -18,6 +18,7 @@
 //   then the scenario's features.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,11 @@
 #include "envs/sumo_session.hpp"
 
 namespace rapid {
+
+struct Trace;
+struct TraceSnapshot;
+
+RAPID_SUMO_BACKEND_BEGIN
 
 // The scenario's design (geometry, sensing, control limits) plus the settings a config may change.
 struct DrivingConfig {
@@ -63,6 +69,16 @@ class DrivingEnv : public Env {
   void reset(std::uint64_t seed, VecRef obs) override;
   StepResult step(const ConstVecRef& action, VecRef obs) override;
   void set_builtin_driver(bool on) override { builtin_ = on; }
+  // Recording (envs/driving_trace.cpp): with a trace attached, reset() adds an episode (and the
+  // road, once) and step() a decision; with none, neither reads anything extra from SUMO.
+  void record(Trace* trace) override;
+
+  // Runs SUMO as `binary` with `extra_args` appended to its command line, from the next reset on
+  // (the libtraci build runs sumo-gui this way: envs/gui_env.cpp).
+  void set_sumo_binary(std::string binary, std::vector<std::string> extra_args) {
+    session_config_.binary = std::move(binary);
+    session_config_.extra_args = std::move(extra_args);
+  }
 
   // Advances the running simulation by `sumo_steps` SUMO steps and nothing else: no ego command,
   // no state read, no observation or reward. This is the raw cost of the network and traffic the
@@ -114,7 +130,14 @@ class DrivingEnv : public Env {
   void read_neighbors(int side, int mode_leaders, int mode_followers);
   bool ego_collided() const;
   bool ego_at_dead_end() const;
-  float reward(bool collision, bool changed_lane, bool failed_change) const;
+  // Out of line and opaque to the optimiser, so the reward's arithmetic is the same code whether
+  // or not the caller reads the terms (a recorded episode gets the very rewards of an unrecorded one).
+  [[gnu::noipa]] driving::RewardTerms reward(bool collision, bool changed_lane, bool failed_change) const;
+  void record_road();
+  void record_reset(std::uint64_t seed);
+  void record_snapshot(TraceSnapshot& snapshot) const;
+  void record_decision(const ConstVecRef& action, double speed_before, const StepResult& r,
+                       const driving::RewardTerms& terms);
   void observe(VecRef obs) const;
 
   DrivingConfig config_;
@@ -131,6 +154,12 @@ class DrivingEnv : public Env {
   driving::IdmGap idm_;
   driving::RewardWeights weights_;
   std::string route_file_;  // this env's routes with the configured inflows (a temporary file)
+  Trace* trace_ = nullptr;  // recording into it when set
 };
 
+// lane-drop, cut-in or merge in this backend's build (throws std::invalid_argument for any other
+// name or bad settings).
+std::unique_ptr<DrivingEnv> make_driving_env(const std::string& name, const ScenarioSettings& settings);
+
+RAPID_SUMO_BACKEND_END
 }  // namespace rapid

@@ -55,4 +55,53 @@ inline double velocity_term(double v, double v_des) {
   return std::max(0.0, 1.0 - std::abs(v - v_des) / v_des);
 }
 
+// What one decision's reward is computed from (the ego after the decision, its current lane).
+struct RewardInputs {
+  double speed = 0.0;           // v, m/s
+  double desired_speed = 25.0;  // v_des, m/s
+  bool leader = false;          // a leader within the sensing range
+  double leader_gap = 0.0, leader_speed = 0.0;
+  bool follower = false;        // a follower within the sensing range
+  double follower_gap = 0.0, follower_speed = 0.0;
+  bool collision = false, changed_lane = false, failed_lane_change = false;
+};
+
+// The reward and its terms, each as the amount it adds (velocity) or subtracts (the others):
+//   total = velocity − gap − follower − failed_lane_change, or −collision on a collision (the
+//   other terms are then 0). total is computed in exactly that order, so it is the reward.
+struct RewardTerms {
+  double velocity = 0.0;            // r_v − offset
+  double gap = 0.0;                 // w_gap·h(ego, leader)
+  double follower = 0.0;            // w_gap·h(new follower, ego) after a lane change
+  double failed_lane_change = 0.0;  // w_fail
+  double collision = 0.0;           // collision_penalty
+  double total = 0.0;               // the reward
+};
+
+inline RewardTerms reward_terms(const RewardWeights& w, const IdmGap& idm, const RewardInputs& in) {
+  RewardTerms t;
+  if (in.collision) {
+    t.collision = w.collision;
+    t.total = -w.collision;
+    return t;
+  }
+  const double v = in.speed;
+  t.velocity = velocity_term(v, in.desired_speed) - w.offset;
+  double r = t.velocity;
+  if (in.leader) {
+    t.gap = w.gap * idm.shortfall(in.leader_gap, v, v - in.leader_speed);
+    r -= t.gap;
+  }
+  if (in.changed_lane && in.follower) {
+    t.follower = w.gap * idm.shortfall(in.follower_gap, in.follower_speed, in.follower_speed - v);
+    r -= t.follower;
+  }
+  if (in.failed_lane_change) {
+    t.failed_lane_change = w.failed_lane_change;
+    r -= t.failed_lane_change;
+  }
+  t.total = r;
+  return t;
+}
+
 }  // namespace rapid::driving

@@ -13,6 +13,8 @@
 
 namespace rapid {
 
+struct Trace;  // envs/trace.hpp
+
 struct StepInfo {
   bool collision = false;
   double ego_speed = 0.0;       // m/s (pendulum: angular velocity)
@@ -45,6 +47,12 @@ class Env {
   // Lets the simulator's own driver control the agent (the `sumo` reference policy); actions
   // passed to step() are then ignored. Environments without such a driver throw.
   virtual void set_builtin_driver(bool on);
+
+  // Records every following reset() and step() into `trace` (nullptr: stop): the road once, then
+  // per episode its start and per decision the action, the reward's terms and the vehicles around
+  // the agent (docs/traces.md). The trace must outlive the recording. Environments without a road
+  // throw std::invalid_argument.
+  virtual void record(Trace* trace);
 };
 
 // Names accepted by make_env, in a stable order.

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 namespace rapid {
+RAPID_SUMO_BACKEND_BEGIN
 
 namespace {
 DrivingConfig lane_drop_config(const ScenarioSettings& settings) {
@@ -29,4 +30,5 @@ void LaneDropEnv::write_features(float* out) const {
   out[0] = d <= 0.0 ? 1.0f : static_cast<float>(2.0 * std::min(1.0, d / kFeatureRange) - 1.0);
 }
 
+RAPID_SUMO_BACKEND_END
 }  // namespace rapid

@@ -6,6 +6,7 @@
 #include "envs/driving_env.hpp"
 
 namespace rapid {
+RAPID_SUMO_BACKEND_BEGIN
 
 class LaneDropEnv final : public DrivingEnv {
  public:
@@ -20,4 +21,5 @@ class LaneDropEnv final : public DrivingEnv {
   double drop_progress_ = 0.0;
 };
 
+RAPID_SUMO_BACKEND_END
 }  // namespace rapid

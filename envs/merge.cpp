@@ -3,6 +3,7 @@
 #include <algorithm>
 
 namespace rapid {
+RAPID_SUMO_BACKEND_BEGIN
 
 namespace {
 DrivingConfig merge_config(const ScenarioSettings& settings) {
@@ -32,4 +33,5 @@ void MergeEnv::write_features(float* out) const {
   out[0] = merged ? 1.0f : static_cast<float>(2.0 * std::clamp(d / feature_range_, 0.0, 1.0) - 1.0);
 }
 
+RAPID_SUMO_BACKEND_END
 }  // namespace rapid

@@ -6,6 +6,7 @@
 #include "envs/driving_env.hpp"
 
 namespace rapid {
+RAPID_SUMO_BACKEND_BEGIN
 
 class MergeEnv final : public DrivingEnv {
  public:
@@ -21,4 +22,5 @@ class MergeEnv final : public DrivingEnv {
   double accel_lane_end_ = 0.0, feature_range_ = 1.0;
 };
 
+RAPID_SUMO_BACKEND_END
 }  // namespace rapid

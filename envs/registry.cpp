@@ -1,10 +1,8 @@
 // The name → environment table behind `--scenario`.
 #include <stdexcept>
 
-#include "envs/cut_in.hpp"
+#include "envs/driving_env.hpp"
 #include "envs/env.hpp"
-#include "envs/lane_drop.hpp"
-#include "envs/merge.hpp"
 #include "envs/pendulum.hpp"
 
 namespace rapid {
@@ -12,6 +10,8 @@ namespace rapid {
 void Env::set_builtin_driver(bool) {
   throw std::invalid_argument("scenario '" + name() + "' has no built-in driver");
 }
+
+void Env::record(Trace*) { throw std::invalid_argument("scenario '" + name() + "' has no road or traffic to record"); }
 
 const std::vector<std::string>& env_names() {
   static const std::vector<std::string> names = {"lane-drop", "cut-in", "merge", "pendulum"};
@@ -29,9 +29,7 @@ std::unique_ptr<Env> make_env(const std::string& name) {
 }
 
 std::unique_ptr<Env> make_env(const std::string& name, const ScenarioSettings& settings) {
-  if (name == "lane-drop") return std::make_unique<LaneDropEnv>(settings);
-  if (name == "cut-in") return std::make_unique<CutInEnv>(settings);
-  if (name == "merge") return std::make_unique<MergeEnv>(settings);
+  if (is_driving_scenario(name)) return make_driving_env(name, settings);
   if (name == "pendulum") throw std::invalid_argument("scenario 'pendulum' takes no driving settings");
   std::string known;
   for (const auto& n : env_names()) known += (known.empty() ? "" : ", ") + n;

@@ -1,10 +1,12 @@
 #include "envs/road.hpp"
 
 #include <functional>
-#include <libsumo/libsumo.h>
 #include <stdexcept>
 
+#include "envs/sumo_api.hpp"
+
 namespace rapid {
+RAPID_SUMO_BACKEND_BEGIN
 
 const Road::Edge& Road::edge(const std::string& id) const {
   const int i = find(id);
@@ -19,15 +21,15 @@ Road Road::from_simulation(const std::vector<std::string>& edge_ids) {
   for (const auto& id : edge_ids) {
     Edge e;
     e.id = id;
-    e.lanes = libsumo::Edge::getLaneNumber(id);
-    e.length = libsumo::Lane::getLength(id + "_0");
+    e.lanes = sumo_api::Edge::getLaneNumber(id);
+    e.length = sumo_api::Lane::getLength(id + "_0");
     road.edges_.push_back(e);
   }
   for (int ei = 0; ei < road.size(); ++ei) {
     Edge& e = road.edges_[ei];
     e.exit = true;
     for (int l = 0; l < e.lanes; ++l)
-      for (const auto& c : libsumo::Lane::getLinks(e.id + "_" + std::to_string(l))) {
+      for (const auto& c : sumo_api::Lane::getLinks(e.id + "_" + std::to_string(l))) {
         const std::string to_lane = c.approachedLane;
         const auto cut = to_lane.rfind('_');
         const int to = road.find(to_lane.substr(0, cut));
@@ -70,4 +72,5 @@ Road Road::from_simulation(const std::vector<std::string>& edge_ids) {
   return road;
 }
 
+RAPID_SUMO_BACKEND_END
 }  // namespace rapid

@@ -9,7 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "envs/sumo_backend.hpp"
+
 namespace rapid {
+RAPID_SUMO_BACKEND_BEGIN
 
 class Road {
  public:
@@ -43,4 +46,5 @@ class Road {
   std::vector<Edge> edges_;
 };
 
+RAPID_SUMO_BACKEND_END
 }  // namespace rapid

@@ -2,14 +2,17 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <libsumo/libsumo.h>
+#include <iostream>
 #include <stdexcept>
+
+#include "envs/sumo_api.hpp"
 
 #ifndef RAPID_NETWORK_DIR
 #define RAPID_NETWORK_DIR "networks"
 #endif
 
 namespace rapid {
+RAPID_SUMO_BACKEND_BEGIN
 
 namespace {
 // The session that owns libsumo's single simulation, if any.
@@ -46,7 +49,7 @@ std::vector<std::string> SumoSession::command_line(const SessionConfig& c) {
     return s;
   };
   std::vector<std::string> cmd = {
-      "sumo", "--net-file", c.net_file, "--seed", std::to_string(c.seed % 2147483647ULL),
+      c.binary, "--net-file", c.net_file, "--seed", std::to_string(c.seed % 2147483647ULL),
       "--step-length", std::to_string(c.step_length),
       // Quiet and fast start-up.
       "--no-step-log", "true", "--no-warnings", "true", "--duration-log.disable", "true",
@@ -64,6 +67,7 @@ std::vector<std::string> SumoSession::command_line(const SessionConfig& c) {
   if (c.max_depart_delay >= 0.0) cmd.insert(cmd.end(), {"--max-depart-delay", std::to_string(c.max_depart_delay)});
   if (!c.route_files.empty()) cmd.insert(cmd.end(), {"--route-files", join(c.route_files)});
   if (!c.additional_files.empty()) cmd.insert(cmd.end(), {"--additional-files", join(c.additional_files)});
+  cmd.insert(cmd.end(), c.extra_args.begin(), c.extra_args.end());
   return cmd;
 }
 
@@ -75,14 +79,21 @@ void SumoSession::start(const SessionConfig& config) {
   if (g_owner != nullptr) {
     // libsumo has one simulation per process; take it over explicitly.
     try {
-      libsumo::Simulation::close();
+      sumo_api::Simulation::close();
     } catch (...) {
     }
     const_cast<SumoSession*>(g_owner)->started_ = false;
     g_owner = nullptr;
   }
   try {
-    libsumo::Simulation::start(command_line(config));
+    // libtraci reports its attempts to connect to the SUMO it started on std::cout ("Could not
+    // connect … Retrying"): stdout is the command's output (e.g. `rapid rollout --json`), so they
+    // go to stderr.
+    struct CoutToCerr {
+      std::streambuf* saved = std::cout.rdbuf(std::cerr.rdbuf());
+      ~CoutToCerr() { std::cout.rdbuf(saved); }
+    } quiet;
+    sumo_api::Simulation::start(command_line(config));
   } catch (...) {
     rethrow_with_context("starting SUMO on '" + config.net_file + "'");
   }
@@ -93,7 +104,7 @@ void SumoSession::start(const SessionConfig& config) {
 void SumoSession::close() {
   if (!active()) return;
   try {
-    libsumo::Simulation::close();
+    sumo_api::Simulation::close();
   } catch (...) {
   }
   started_ = false;
@@ -111,4 +122,5 @@ void SumoSession::require_active() const {
 
 SumoSession::~SumoSession() { close(); }
 
+RAPID_SUMO_BACKEND_END
 }  // namespace rapid

@@ -11,7 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "envs/sumo_backend.hpp"
+
 namespace rapid {
+RAPID_SUMO_BACKEND_BEGIN
 
 // Where the built networks of the scenarios live: $RAPID_NETWORK_DIR if set, else the build's
 // networks/ folder (compiled in).
@@ -20,6 +23,10 @@ std::string network_dir();
 std::string network_file(const std::string& scenario, const std::string& file);
 
 struct SessionConfig {
+  // The SUMO program: "sumo" (libsumo runs it in this process whatever the name; libtraci starts
+  // it), or "sumo-gui" for the libtraci build (envs/gui_env.hpp), with extra options of its own.
+  std::string binary = "sumo";
+  std::vector<std::string> extra_args;
   std::string net_file;
   std::vector<std::string> route_files;       // routes and flows
   std::vector<std::string> additional_files;  // vehicle types
@@ -57,4 +64,5 @@ class SumoSession {
 // std::runtime_error "<context>: <message>". Use inside a catch (...) block.
 [[noreturn]] void rethrow_with_context(const std::string& context);
 
+RAPID_SUMO_BACKEND_END
 }  // namespace rapid

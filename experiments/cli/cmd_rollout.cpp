@@ -1,5 +1,6 @@
 // `rapid rollout`: run a fixed policy in a scenario and report each episode's return, length
-// and collision (README, "The `rapid` command").
+// and collision (README, "The `rapid` command"); --record, --gui and --settings-from watch it
+// (rollout_watch.hpp).
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -11,6 +12,7 @@
 #include "experiments/cli/checks.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
+#include "experiments/cli/rollout_watch.hpp"
 
 namespace rapid {
 
@@ -22,6 +24,8 @@ struct RolloutOptions {
   int episodes = 10;
   std::uint64_t seed = 0;
   bool json = false;
+  bool eval_traffic = false;  // --eval-traffic: the trainer's evaluation seeds
+  WatchOptions watch;
 };
 
 struct EpisodeSummary {
@@ -31,7 +35,7 @@ struct EpisodeSummary {
 };
 
 int run_rollout(const RolloutOptions& o) {
-  std::unique_ptr<Env> env = check_option("--scenario", [&] { return make_env(o.scenario); });
+  std::unique_ptr<Env> env = make_watched_env(o.scenario, o.watch);
   Mlp actor;
   const bool fixed = o.policy == "random" || o.policy == "zero" || o.policy == "sumo";
   if (!fixed) {
@@ -51,11 +55,18 @@ int run_rollout(const RolloutOptions& o) {
     check_option("--policy sumo", [&] { env->set_builtin_driver(true); });
   }
 
+  Trace trace;
+  if (!o.watch.record.empty()) {
+    trace.policy = o.policy;
+    trace.seed = o.seed;
+    trace.traffic = o.eval_traffic ? "evaluation" : "seed";
+    env->record(&trace);
+  }
   Rng action_rng(stream_seed(o.seed, Stream::kExploration));
   Vec obs(env->obs_dim()), action(env->act_dim());
   std::vector<EpisodeSummary> episodes;
   for (int e = 0; e < o.episodes; ++e) {
-    env->reset(stream_seed(o.seed, Stream::kEnvEval, e), obs);
+    env->reset(stream_seed(o.eval_traffic ? kEvaluationBaseSeed : o.seed, Stream::kEnvEval, e), obs);
     EpisodeSummary ep;
     for (;;) {
       if (o.policy == "random") {
@@ -76,6 +87,7 @@ int run_rollout(const RolloutOptions& o) {
       std::cout << "episode " << e << " return " << ep.ret << " length " << ep.length << " collision "
                 << (ep.collision ? "yes" : "no") << std::endl;
   }
+  if (!o.watch.record.empty()) write_trace_file(o.watch.record, trace);
   if (o.json) {
     nlohmann::json j;
     j["episodes"] = nlohmann::json::array();
@@ -98,6 +110,18 @@ Command add_rollout_command(CLI::App& parent) {
   sub->add_option("--seed", opts->seed, "seed of the episodes' traffic and of the random policy")
       ->check(seed_validator());
   sub->add_flag("--json", opts->json, "print one JSON object instead of one line per episode");
+  sub->add_flag("--eval-traffic", opts->eval_traffic,
+                "episode e runs on the traffic of evaluation episode e of every training run (not on --seed's)");
+  sub->add_option("--profile", opts->watch.profile, "scenario settings of a config profile: short (default) or flow");
+  sub->add_option("--settings-from", opts->watch.settings_from,
+                  "scenario settings of a training run (its folder or record.json), e.g. for its actor.ckpt");
+  sub->add_option("--record", opts->watch.record, "write a trace of every episode to this file (docs/traces.md)");
+  sub->add_flag("--gui", opts->watch.gui, "run the episodes in sumo-gui (needs an X display)");
+  sub->add_option("--gui-delay", opts->watch.gui_options.delay_ms, "ms per 0.1 s SUMO step in sumo-gui (100: real time)")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--screenshot", opts->watch.gui_options.screenshot, "with --gui: a PNG of the first episode's view");
+  sub->add_option("--screenshot-at", opts->watch.gui_options.screenshot_at, "the decision of that screenshot (default 10)")
+      ->check(CLI::NonNegativeNumber);
   return {sub, [opts] { return run_rollout(*opts); }};
 }
 

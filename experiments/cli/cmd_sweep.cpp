@@ -31,6 +31,7 @@ struct SweepOptions {
   int jobs = 0;  // 0: the grid's "jobs", else the number of cores
   bool force = false;
   bool no_summary = false;
+  bool no_animations = false;
   std::string job_timeout;  // local: e.g. 90s, 45m, 2h; empty: no limit
   // --backend slurm (sweep/slurm_backend.hpp)
   SlurmOptions slurm;
@@ -221,7 +222,7 @@ int sweep_command(const SweepOptions& o) {
       std::cout << "  " << j.state << " " << j.id << ": " << j.error << "\n";
   if (report.interrupted_by) return 130;
   // Refresh the reports from whatever records exist (a partial sweep or an --only rerun too).
-  if (!o.no_summary) summarize_sweep(dir.string(), "", /*plots=*/true);
+  if (!o.no_summary) summarize_sweep(dir.string(), "", /*plots=*/true, !o.no_animations);
   return report.all_ok() ? kExitOk : kExitFailed;
 }
 
@@ -236,6 +237,7 @@ Command add_sweep_command(CLI::App& parent) {
   sub->add_option("--only", o->only, "run a subset: scenario=..,dataset=..,algo=..,seed=.. (repeat a key or use | for alternatives)");
   sub->add_flag("--force", o->force, "rerun the selected jobs even if their records are ok");
   sub->add_flag("--no-summary", o->no_summary, "do not refresh the reports (rapid summarize) at the end");
+  sub->add_flag("--no-animations", o->no_animations, "refresh the reports without the animations");
   sub->add_option("--backend", o->backend, "where jobs run: local (this machine) or slurm (submit job arrays)");
   sub->add_option("--out", o->out, "sweep folder (default: results/<grid name>)");
   sub->add_option("--job-timeout", o->job_timeout,

@@ -23,7 +23,8 @@ Command add_bench_command(CLI::App& parent);
 Command add_budget_command(CLI::App& parent);
 
 // `rapid summarize SWEEP_DIR [--out DIR]`, also run by `rapid sweep` when it ends: the reports
-// (and with `plots` the figures) into DIR, default the sweep folder. Returns the exit code.
-int summarize_sweep(const std::string& sweep_dir, const std::string& out_dir, bool plots);
+// (with `plots` the figures, with `animations` too the best and worst cells' animations) into
+// DIR, default the sweep folder. Returns the exit code.
+int summarize_sweep(const std::string& sweep_dir, const std::string& out_dir, bool plots, bool animations);
 
 }  // namespace rapid

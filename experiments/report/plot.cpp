@@ -12,10 +12,7 @@ namespace rapid {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-// fork + exec without a shell (paths may hold spaces); stdout/stderr silenced when `quiet`.
-int run(const std::vector<std::string>& argv, bool quiet) {
+int run_command(const std::vector<std::string>& argv, bool quiet) {
   std::vector<char*> args;
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
@@ -37,8 +34,6 @@ int run(const std::vector<std::string>& argv, bool quiet) {
     if (errno != EINTR) return -1;
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
-
-}  // namespace
 
 std::optional<fs::path> find_plot_script() {
   std::vector<fs::path> candidates;
@@ -62,12 +57,12 @@ std::string plot_python() {
 }
 
 bool python_has_matplotlib(const std::string& python) {
-  return run({python, "-c", "import matplotlib"}, /*quiet=*/true) == 0;
+  return run_command({python, "-c", "import matplotlib"}, /*quiet=*/true) == 0;
 }
 
 int run_plot_script(const std::string& python, const fs::path& script, const fs::path& summary_json,
                     const fs::path& out_dir) {
-  return run({python, script.string(), "--summary", summary_json.string(), "--out", out_dir.string()}, /*quiet=*/false);
+  return run_command({python, script.string(), "--summary", summary_json.string(), "--out", out_dir.string()}, /*quiet=*/false);
 }
 
 }  // namespace rapid

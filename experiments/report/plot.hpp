@@ -5,8 +5,13 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace rapid {
+
+// fork + exec of argv[0] (a path; no shell, so paths may hold spaces); stdout and stderr silenced
+// when `quiet`. Returns the exit code, -1 when it could not be started or was killed.
+int run_command(const std::vector<std::string>& argv, bool quiet);
 
 // scripts/plot from the source tree this binary was built from, else next to the binary
 // (BIN_DIR/scripts/plot or BIN_DIR/../scripts/plot); nullopt if none exists.

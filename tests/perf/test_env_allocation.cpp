@@ -7,6 +7,7 @@
 
 #include "envs/driving_env.hpp"
 #include "envs/env.hpp"
+#include "envs/trace.hpp"
 #include "tests/perf/library_alloc_counter.hpp"
 
 using namespace rapid;
@@ -77,6 +78,69 @@ INSTANTIATE_TEST_SUITE_P(DrivingScenarios, EnvDecisionAllocation,
                              if (c == '-') c = '_';
                            return name;
                          });
+
+// Recording off costs nothing (docs/traces.md): an env that recorded an episode and stopped makes
+// exactly the libsumo queries of one that never recorded (counted by the allocations libsumo makes
+// outside Simulation::step: its getters return strings and vectors) and allocates nothing itself;
+// while recording, that count is visibly higher.
+TEST(EnvDecisionAllocation, RecordingOffAddsNoLibsumoCallsAndNoAllocation) {
+  auto count = [](Env& env, bool recording_before) {
+    Trace trace;
+    Vec obs(env.obs_dim()), action(env.act_dim());
+    if (recording_before) {
+      env.record(&trace);
+      env.reset(4, obs);
+      for (int k = 0; k < 3; ++k) {
+        action_for(k, action);
+        env.step(action, obs);
+      }
+      env.record(nullptr);
+    }
+    env.reset(3, obs);
+    EXPECT_TRUE(test::watch_library("libsumocpp"));
+    EXPECT_TRUE(test::watch_function(kSimulationStep));
+    std::size_t harness = 0, libsumo = 0;
+    for (int k = 0; k < 10; ++k) {
+      action_for(k, action);
+      test::start_counting();
+      const StepResult r = env.step(action, obs);
+      const test::AllocationCounts c = test::stop_counting();
+      harness += c.outside_library();
+      libsumo += c.in_library - c.in_function;  // the env's queries, not SUMO's stepping
+      if (r.terminated || r.truncated) break;
+    }
+    return std::pair{harness, libsumo};
+  };
+  // First use of some libsumo queries in a process allocates once (a cache): warm them up.
+  auto warm = make_env("merge");
+  count(*warm, false);
+  auto never = make_env("merge");
+  const auto [never_harness, never_libsumo] = count(*never, false);
+  auto stopped = make_env("merge");
+  const auto [stopped_harness, stopped_libsumo] = count(*stopped, true);
+  EXPECT_EQ(never_harness, 0u);
+  EXPECT_EQ(stopped_harness, 0u);
+  EXPECT_EQ(stopped_libsumo, never_libsumo) << "a decision with recording off called libsumo more";
+
+  // While recording, the same decisions read every vehicle around the ego: more libsumo calls.
+  auto recording = make_env("merge");
+  Trace trace;
+  recording->record(&trace);
+  Vec obs(recording->obs_dim()), action(recording->act_dim());
+  recording->reset(3, obs);
+  std::size_t libsumo = 0;
+  for (int k = 0; k < 10; ++k) {
+    action_for(k, action);
+    test::start_counting();
+    const StepResult r = recording->step(action, obs);
+    const test::AllocationCounts c = test::stop_counting();
+    libsumo += c.in_library - c.in_function;
+    if (r.terminated || r.truncated) break;
+  }
+  EXPECT_GT(libsumo, never_libsumo);
+  std::printf("[ allocs   ] merge, 10 decisions: libsumo %zu unrecorded, %zu after recording stopped, %zu recording\n",
+              never_libsumo, stopped_libsumo, libsumo);
+}
 
 // The attribution must see both kinds of allocation, or the test above proves nothing.
 TEST(EnvDecisionAllocation, CounterSeesHarnessAndLibsumoAllocations) {

@@ -1,0 +1,99 @@
+#include "experiments/cli/rollout_watch.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.hpp"
+#include "experiments/cli/errors.hpp"
+#include "experiments/run/run_config.hpp"
+
+namespace rapid {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The folder a file is to be written into must exist (nothing is created on the user's behalf).
+void check_output_file(const std::string& option, const std::string& path) {
+  if (path.empty()) throw UsageError(option + ": empty file name");
+  const fs::path p(path);
+  if (fs::is_directory(p)) throw UsageError(option + ": '" + path + "' is a folder, expected a file name");
+  const fs::path folder = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  if (!fs::is_directory(folder)) throw UsageError(option + ": folder '" + folder.string() + "' does not exist");
+}
+
+// The run record behind --settings-from: RUN/record.json or the file itself.
+nlohmann::json read_run_record(const std::string& from) {
+  const fs::path path = fs::is_directory(from) ? fs::path(from) / "record.json" : fs::path(from);
+  std::ifstream in(path);
+  if (!in) throw UsageError("--settings-from: cannot read '" + path.string() + "'");
+  nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded() || !j.is_object()) throw UsageError("--settings-from: '" + path.string() + "' is not a JSON object");
+  if (j.value("schema", "") != "rapid.run/1")
+    throw UsageError("--settings-from: '" + path.string() + "' is not a run record (schema rapid.run/1)");
+  return j;
+}
+
+}  // namespace
+
+ScenarioSettings rollout_settings(const std::string& scenario, const WatchOptions& w) {
+  if (!w.profile.empty() && !w.settings_from.empty())
+    throw UsageError("--profile: give either --profile or --settings-from, not both");
+  if (!w.profile.empty()) {
+    try {
+      check_profile(w.profile, scenario);
+      return run_config_from_json(default_config_json(scenario, w.profile), scenario).scenario;
+    } catch (const std::exception& e) {
+      throw UsageError(std::string("--profile: ") + e.what());
+    }
+  }
+  if (w.settings_from.empty()) return default_scenario_settings(scenario);
+  const nlohmann::json record = read_run_record(w.settings_from);
+  const nlohmann::json* cell = record.contains("cell") && record["cell"].is_object() ? &record["cell"] : nullptr;
+  const std::string ran = cell ? cell->value("scenario", "") : "";
+  if (ran != scenario)
+    throw UsageError("--settings-from: the run is of scenario '" + ran + "', not '" + scenario + "'");
+  if (!record.contains("config") || !record["config"].is_object())
+    throw UsageError("--settings-from: the run record has no config");
+  try {
+    return run_config_from_json(record["config"], scenario).scenario;
+  } catch (const std::exception& e) {
+    throw UsageError(std::string("--settings-from: ") + e.what());
+  }
+}
+
+std::unique_ptr<Env> make_watched_env(const std::string& scenario, const WatchOptions& w) {
+  if (!w.gui && !w.gui_options.screenshot.empty()) throw UsageError("--screenshot: needs --gui");
+  if (!is_driving_scenario(scenario)) {
+    std::unique_ptr<Env> env;
+    try {
+      env = make_env(scenario);  // the pendulum, or the one-line "unknown scenario" error
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--scenario: ") + e.what());
+    }
+    if (!w.record.empty()) throw UsageError("--record: scenario '" + scenario + "' has no road or traffic to record");
+    if (w.gui) throw UsageError("--gui: scenario '" + scenario + "' does not run in SUMO");
+    if (!w.settings_from.empty()) throw UsageError("--settings-from: scenario '" + scenario + "' has no scenario settings");
+    return env;
+  }
+  if (!w.record.empty()) check_output_file("--record", w.record);
+  if (w.gui) {
+    if (!w.gui_options.screenshot.empty()) {
+      check_output_file("--screenshot", w.gui_options.screenshot);
+      if (fs::path(w.gui_options.screenshot).extension() != ".png")
+        throw UsageError("--screenshot: '" + w.gui_options.screenshot + "' must end in .png");
+    }
+    if (const std::string why = gui_unavailable_reason(); !why.empty()) throw UsageError("--gui: " + why);
+  }
+  const ScenarioSettings settings = rollout_settings(scenario, w);
+  try {
+    return w.gui ? make_gui_env(scenario, settings, w.gui_options) : make_env(scenario, settings);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string(w.settings_from.empty() ? "--scenario: " : "--settings-from: ") + e.what());
+  }
+}
+
+void write_trace_file(const std::string& path, const Trace& trace) { write_file_atomic(path, trace_to_json(trace)); }
+
+}  // namespace rapid
