@@ -118,11 +118,15 @@ class GridChecker {
   std::string label_;
 };
 
-ReferenceSettings parse_reference(const GridChecker& check, const json& ref, const std::vector<std::uint64_t>& seeds) {
+// `needed`: some algorithm of the grid uses prior data, so the reference agent exists and its seed
+// must not be one of the evaluation seeds (a grid of DDPG alone, such as the budget rule's
+// reference runs, may evaluate any seeds).
+ReferenceSettings parse_reference(const GridChecker& check, const json& ref, const std::vector<std::uint64_t>& seeds,
+                                  bool needed) {
   check.only_known_keys(ref, kReferenceKeys, "reference");
   ReferenceSettings r;
   if (ref.contains("seed")) r.seed = check.non_negative_integer(ref["seed"], "reference.seed");
-  if (std::find(seeds.begin(), seeds.end(), r.seed) != seeds.end())
+  if (needed && std::find(seeds.begin(), seeds.end(), r.seed) != seeds.end())
     check.fail("reference.seed", std::to_string(r.seed) + " is also an evaluation seed; the reference agent needs its own");
   if (ref.contains("transitions")) {
     const std::uint64_t t = check.non_negative_integer(ref["transitions"], "reference.transitions");
@@ -228,7 +232,9 @@ Grid parse_grid(const json& doc, const std::string& label) {
   }
   grid.config = check.object_or_empty(doc, "config");
   grid.scenario_config = check.object_or_empty(doc, "scenario_config");
-  grid.reference = parse_reference(check, check.object_or_empty(doc, "reference"), grid.seeds);
+  bool any_prior = false;
+  for (const auto& algo : grid.algos) any_prior = any_prior || find_algorithm(algo).uses_prior;
+  grid.reference = parse_reference(check, check.object_or_empty(doc, "reference"), grid.seeds, any_prior);
   if (doc.contains("max_retries")) {
     const std::uint64_t r = check.non_negative_integer(doc["max_retries"], "max_retries");
     if (r > 100) check.fail("max_retries", "at most 100, got " + std::to_string(r));

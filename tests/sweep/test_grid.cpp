@@ -154,6 +154,26 @@ TEST(JobGraph, TheQuickGridHasThe39TableCellsPerSeed) {
   EXPECT_EQ(graph.jobs.size() - static_cast<std::size_t>(cells), 2 * g.scenarios.size());
 }
 
+// The flow grids: the flow profile's configs, each scenario's reference trained for its own long
+// run L past the cells' budget T, and the budget rule's grid of DDPG alone on seeds of its own.
+TEST(JobGraph, TheFlowGridsUseTheFlowProfileAndTheBudgetRulesLongRuns) {
+  for (const char* name : {"quick-flow", "paper-flow"}) {
+    SCOPED_TRACE(name);
+    const Grid g = load_grid(std::string(RAPID_SOURCE_DIR) + "/experiments/grids/" + name + ".json");
+    EXPECT_EQ(g.profile, "flow");
+    EXPECT_EQ(build_job_graph(g).jobs.size(), 39 * g.seeds.size() + 2 * g.scenarios.size());
+    for (const std::string& s : g.scenarios) {
+      const long budget = cell_config(g, s).at("steps").get<long>();
+      EXPECT_GT(reference_for(g, s).steps, budget) << s;
+      EXPECT_EQ(cell_config(g, s).at("reward"), "flow");
+    }
+  }
+  const Grid budget = load_grid(std::string(RAPID_SOURCE_DIR) + "/experiments/grids/budget-flow.json");
+  EXPECT_EQ(build_job_graph(budget).jobs.size(), 9u);  // 3 scenarios x 3 seeds, no dataset stage
+  EXPECT_EQ(cell_config(budget, "lane-drop").at("steps"), 800000);
+  EXPECT_EQ(cell_config(budget, "lane-drop").at("eval_every"), 5000);
+}
+
 TEST(Selection, FiltersRepeatedKeysAlternativesAndDdpg) {
   const Grid g = parse_grid(valid_grid(), "g.json");
   const JobGraph graph = build_job_graph(g);
