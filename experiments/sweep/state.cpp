@@ -8,6 +8,7 @@
 #include "experiments/run/job.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/run/run_config.hpp"
+#include "experiments/sweep/cell_record.hpp"
 
 namespace rapid {
 
@@ -101,15 +102,10 @@ std::string marker_config_hash(const std::optional<nlohmann::json>& marker) {
 }  // namespace
 
 bool job_is_done(const SweepFolder& folder, const SweepJob& job) {
+  // A cell: the one judgement of its record that status and the reports share.
+  if (job.kind == JobKind::kCell) return read_cell_record(folder, job).done();
   const auto marker = read_json_file(folder.path(job_marker_path(job)));
   if (!says_ok(marker)) return false;
-  if (job.kind == JobKind::kCell) {
-    try {
-      return marker->contains("config_hash") && (*marker)["config_hash"] == expected_cell_hash(folder, job);
-    } catch (const std::runtime_error&) {
-      return false;  // its dataset is gone: the record cannot be checked
-    }
-  }
   const auto outcome = read_outcome(folder, job);
   return outcome && outcome->state == "ok" && outcome->inputs_hash == dataset_stage_inputs_hash(folder, job) &&
          outcome->marker_hash == marker_config_hash(marker);
