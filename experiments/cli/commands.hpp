@@ -23,6 +23,7 @@ Command add_bench_command(CLI::App& parent);
 
 // `rapid summarize SWEEP_DIR [--out DIR]`, also run by `rapid sweep` when it ends: the reports
 // (and with `plots` the figures) into DIR, default the sweep folder. Returns the exit code.
-int summarize_sweep(const std::string& sweep_dir, const std::string& out_dir, bool plots);
+// With `force` an --out folder that holds other files is written into anyway.
+int summarize_sweep(const std::string& sweep_dir, const std::string& out_dir, bool plots, bool force = false);
 
 }  // namespace rapid

@@ -1,8 +1,9 @@
 #include "experiments/run/run_config.hpp"
 
 #include <cstdlib>
-#include <fstream>
 #include <stdexcept>
+
+#include "experiments/run/json_input.hpp"
 
 namespace rapid {
 
@@ -13,15 +14,14 @@ std::string config_dir() {
 
 nlohmann::json default_config_json(const std::string& scenario) {
   const std::string path = config_dir() + "/" + scenario + ".json";
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("missing config file " + path);
+  nlohmann::json j;
   try {
-    nlohmann::json j = nlohmann::json::parse(in);
-    if (!j.is_object()) throw std::runtime_error("not a JSON object");
-    return j;
-  } catch (const std::exception& e) {
+    j = read_json_input(path);
+  } catch (const std::invalid_argument& e) {
     throw std::runtime_error("config file " + path + ": " + e.what());
   }
+  if (!j.is_object()) throw std::runtime_error("config file " + path + ": not a JSON object");
+  return j;
 }
 
 namespace {

@@ -1,11 +1,11 @@
 #include "experiments/sweep/state.hpp"
 
 #include <fstream>
-#include <sstream>
 
 #include "core/atomic_file.hpp"
 #include "core/hash.hpp"
 #include "experiments/run/job.hpp"
+#include "experiments/run/json_input.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/run/run_config.hpp"
 #include "experiments/sweep/cell_record.hpp"
@@ -55,13 +55,11 @@ std::string dataset_stage_inputs_hash(const SweepFolder& folder, const SweepJob&
 }
 
 std::optional<nlohmann::json> read_json_file(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) return std::nullopt;
-  std::stringstream text;
-  text << in.rdbuf();
-  nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded()) return std::nullopt;
-  return j;
+  try {
+    return read_json_input(path.string());  // bounded: a hostile file cannot hang or crash the reader
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
 }
 
 void write_outcome(const SweepFolder& folder, const SweepJob& job, const Outcome& o) {

@@ -159,7 +159,8 @@ TEST_F(SmallSweep, AGridChangeRerunsExactlyTheJobsItTouches) {
 }
 
 TEST_F(SmallSweep, StatusCountsStatesAndShowsTheFailedJobsError) {
-  // A corrupt dataset makes its cells fail inside `rapid run` (record written, exit 1).
+  // A corrupt dataset makes its cells fail: `rapid run` refuses it (exit 2, nothing written), so
+  // the sweep does not retry it.
   grid_["datasets"] = {"initial", "medium"};
   grid_["seeds"] = {0};
   grid_["max_retries"] = 1;
@@ -171,10 +172,11 @@ TEST_F(SmallSweep, StatusCountsStatesAndShowsTheFailedJobsError) {
   EXPECT_EQ(r.exit_code, 1) << r.output;
   const json manifest = read_json(sweep_ / "sweep.json");
   EXPECT_EQ(manifest["status"], "failed");
-  EXPECT_EQ(manifest["retries"], 1) << "the failed job is retried max_retries times";
+  EXPECT_EQ(manifest["retries"], 0) << "bad input is not retried";
   ASSERT_EQ(manifest["failures"].size(), 1u);
   EXPECT_EQ(manifest["failures"][0]["job"], "pendulum/medium/rapid-rl/seed0");
-  EXPECT_EQ(read_json(sweep_ / "jobs/pendulum/medium/rapid-rl/seed0/outcome.json")["attempts"], 2);
+  EXPECT_EQ(read_json(sweep_ / "jobs/pendulum/medium/rapid-rl/seed0/outcome.json")["attempts"], 1);
+  EXPECT_FALSE(fs::exists(sweep_ / "jobs/pendulum/medium/rapid-rl/seed0/record.json"));
 
   // One more seed in the folder's grid: its cells are pending.
   json folder_grid = read_json(sweep_ / "grid.json");
