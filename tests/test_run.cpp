@@ -146,15 +146,38 @@ TEST(RapidRun, BadInputExitsTwoWithOneLineAndWritesNothing) {
     EXPECT_EQ(std::count(r.text.begin(), r.text.end(), '\n'), 1) << args << "\n" << r.text;
     EXPECT_FALSE(std::filesystem::exists(dir.file("job"))) << args;
   }
-  // A dataset of the wrong shape is a failed run with a record that names the mismatch.
-  const auto r = rapid_cli("run --scenario pendulum --algo rlpd --seed 0 --dataset " + dir.file("wrong_dims.h5") + out,
-                           /*with_stderr=*/true);
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(read_record(dir.file("job"))["error"].get<std::string>().find("has 5 columns"), std::string::npos);
-  // So is one whose actions lie outside the action box [-1, 1].
+  // A dataset that does not fit the scenario is bad input too: refused before anything is
+  // written, not a failed run with a record (tests/datasets/test_dataset_cli.cpp has every kind).
   write_dataset(dir.file("wide.h5"), rapid::testing::make_dataset(3, 1, {50}));
-  EXPECT_EQ(rapid_cli("run --scenario pendulum --algo rlpd --seed 0 --dataset " + dir.file("wide.h5") + out).exit_code, 1);
-  EXPECT_NE(read_record(dir.file("job"))["error"].get<std::string>().find("actions must lie in [-1, 1]"), std::string::npos);
+  const std::pair<std::string, std::string> datasets[] = {{"wrong_dims.h5", "'observations' has 5 columns"},
+                                                          {"wide.h5", "actions must lie in [-1, 1]"}};
+  for (const auto& [file, message] : datasets) {
+    const auto r = rapid_cli("run --scenario pendulum --algo rlpd --seed 0 --dataset " + dir.file(file) + out, true);
+    EXPECT_EQ(r.exit_code, 2) << file;
+    EXPECT_NE(r.text.find("rapid: error: --dataset: dataset " + dir.file(file) + ": " + message), std::string::npos) << r.text;
+    EXPECT_EQ(std::count(r.text.begin(), r.text.end(), '\n'), 1) << r.text;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("job"))) << file;
+  }
+}
+
+// --out must be a folder rapid can write: otherwise exit 2 naming the option, before any work.
+TEST(RapidRun, AnUnusableOutFolderIsBadInput) {
+  rapid::testing::ScratchDir dir;
+  write_file_atomic(dir.file("a_file"), "mine");
+  const std::pair<std::string, std::string> cases[] = {
+      {"''", "--out: must name a folder, got an empty path"},
+      {dir.file("a_file"), "--out: '" + dir.file("a_file") + "' is not a folder"},
+      {dir.file("a_file") + "/job", "--out: cannot "},
+      {dir.file(std::string(300, 'x')), "--out: cannot "},
+  };
+  for (const auto& [out, message] : cases) {
+    const auto r = rapid_cli("run " + kShort + "--algo ddpg --seed 0 --out " + out, /*with_stderr=*/true);
+    EXPECT_EQ(r.exit_code, 2) << out << "\n" << r.text;
+    EXPECT_NE(r.text.find("rapid: error: " + message), std::string::npos) << out << "\n" << r.text;
+    EXPECT_EQ(std::count(r.text.begin(), r.text.end(), '\n'), 1) << r.text;
+  }
+  EXPECT_EQ(read_file(dir.file("a_file")), "mine");
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1) << "nothing else was written";
 }
 
 // DDPG learns the swing-up: ≥ −200 final mean evaluation return within 20,000 steps (a
@@ -167,4 +190,21 @@ TEST(RapidRun, DdpgLearnsPendulum) {
   EXPECT_EQ(r["config"]["steps"], 20000);
   EXPECT_LT(r["eval"][0]["return_mean"].get<double>(), -800.0) << "the untrained policy is poor";
   EXPECT_GE(r["final"]["return_mean"].get<double>(), -200.0);
+}
+
+// Bad input outside any subcommand's own checks: still one short line naming what is wrong.
+TEST(RapidCli, AnUnknownSubcommandAndAnOutOfRangeCountAreNamed) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"frobnicate", "rapid: error: unknown subcommand 'frobnicate'; expected one of rollout, "},
+      {"dataset info --bins -1 x.h5", "rapid: error: --bins: must be an integer of at least 1, got '-1'"},
+      {"rollout --scenario pendulum --policy zero --seed 0 --episodes 0",
+       "rapid: error: --episodes: must be an integer of at least 1, got '0'"},
+  };
+  for (const auto& [args, message] : cases) {
+    const auto r = rapid_cli(args, /*with_stderr=*/true);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.text;
+    EXPECT_EQ(r.text.rfind(message, 0), 0u) << args << "\n" << r.text;
+    EXPECT_EQ(std::count(r.text.begin(), r.text.end(), '\n'), 1) << r.text;
+    EXPECT_LT(r.text.size(), 200u) << r.text;
+  }
 }

@@ -20,6 +20,19 @@ inline CLI::Validator seed_validator() {
       "SEED");
 }
 
+// A count given on the command line: digits only, at least `min`, at most nine digits. (CLI11's
+// PositiveNumber prints its 309-digit maximum when it refuses a value.)
+inline CLI::Validator count_validator(int min = 1) {
+  return CLI::Validator(
+      [min](std::string& s) -> std::string {
+        const bool digits = !s.empty() && s.size() <= 9 &&
+                            std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
+        if (digits && std::stol(s) >= min) return "";
+        return "must be an integer of at least " + std::to_string(min) + ", got '" + s + "'";
+      },
+      "COUNT");
+}
+
 // "a, b, c or d": the names a help text offers, read from the registry that defines them
 // (env_names(), algo_names(), dataset_names()) so that help cannot fall behind it.
 inline std::string names_or(const std::vector<std::string>& names) {

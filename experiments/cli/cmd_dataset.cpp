@@ -18,6 +18,7 @@
 #include "experiments/cli/cli_config.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
+#include "experiments/cli/output_folder.hpp"
 #include "experiments/report/dataset_summary.hpp"
 #include "experiments/run/dataset_build.hpp"
 #include "experiments/run/job.hpp"
@@ -101,7 +102,7 @@ Command add_info(CLI::App& dataset) {
   CLI::App* sub = dataset.add_subcommand("info", "Print size, return and reward statistics and the reward histogram");
   sub->add_option("FILE", opts->file, "a D4RL-layout HDF5 file")->required();
   sub->add_flag("--json", opts->json, "print one JSON object");
-  sub->add_option("--bins", opts->bins, "number of reward histogram bins")->check(CLI::PositiveNumber);
+  sub->add_option("--bins", opts->bins, "number of reward histogram bins")->check(count_validator());
   sub->add_option("--range", opts->range, "histogram range LO HI (default: the rewards' min and max)")
       ->expected(2);
   return {sub, [opts] { return run_info(*opts); }};
@@ -128,6 +129,7 @@ int run_build(const BuildOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  make_output_folder(o.dir, "--dir");  // last: nothing is written before every input is checked
   return build_datasets(spec);
 }
 

@@ -9,6 +9,7 @@
 #include "experiments/cli/errors.hpp"
 #include "experiments/report/baseline.hpp"
 #include "experiments/report/summarize.hpp"
+#include "experiments/run/json_input.hpp"
 
 namespace rapid {
 
@@ -24,16 +25,11 @@ struct DiffCliOptions {
 };
 
 nlohmann::json read_baseline(const std::string& path) {
-  if (!fs::is_regular_file(path)) throw UsageError("BASELINE: '" + path + "' is not a file");
-  std::string text;
   try {
-    text = read_file(path);
-  } catch (const std::exception& e) {
-    throw UsageError(std::string("BASELINE: ") + e.what());
+    return read_json_input(path);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("BASELINE: '" + path + "' " + e.what());
   }
-  nlohmann::json j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded()) throw UsageError("BASELINE: '" + path + "' is not valid JSON");
-  return j;
 }
 
 void print_differences(const DiffResult& r) {

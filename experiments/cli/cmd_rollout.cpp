@@ -106,7 +106,7 @@ Command add_rollout_command(CLI::App& parent) {
   sub->add_option("--scenario", opts->scenario, names_or(env_names()))->required();
   sub->add_option("--policy", opts->policy, "random, zero, sumo (SUMO's own driver) or an actor checkpoint")
       ->required();
-  sub->add_option("--episodes", opts->episodes, "number of episodes")->check(CLI::PositiveNumber);
+  sub->add_option("--episodes", opts->episodes, "number of episodes")->check(count_validator());
   sub->add_option("--seed", opts->seed, "seed of the episodes' traffic and of the random policy")
       ->check(seed_validator());
   sub->add_flag("--json", opts->json, "print one JSON object instead of one line per episode");

@@ -2,13 +2,16 @@
 #include <filesystem>
 
 #include "algos/registry.hpp"
+#include "core/dataset.hpp"
 #include "envs/env.hpp"
 #include "experiments/cli/checks.hpp"
 #include "experiments/cli/cli_config.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
+#include "experiments/cli/output_folder.hpp"
 #include "experiments/run/dataset_build.hpp"
 #include "experiments/run/job.hpp"
+#include "experiments/run/prior_dataset.hpp"
 #include "experiments/run/run_config.hpp"
 #include "experiments/run/run_job.hpp"
 #include "experiments/sweep/grid.hpp"
@@ -32,6 +35,20 @@ std::string resolve_dataset_path(const RunOptions& o) {
 }
 
 
+// The prior dataset must fit the scenario before anything is written: a file that does not is
+// bad input (exit 2), not a failed run with a record.
+void check_prior_dataset(const std::string& path, const std::string& scenario) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw UsageError("--dataset: no dataset file at '" + path + "'" + (ec ? " (" + ec.message() + ")" : ""));
+  const std::unique_ptr<Env> env = make_env(scenario);
+  try {
+    read_prior_dataset(path, scenario, env->obs_dim(), env->act_dim());
+  } catch (const DatasetError& e) {
+    throw UsageError(std::string("--dataset: ") + e.what());
+  }
+}
+
 int run_command(const RunOptions& o) {
   JobSpec spec;
   check_option("--scenario", [&] { make_env(o.scenario); });
@@ -45,8 +62,7 @@ int run_command(const RunOptions& o) {
   if (!o.dataset.empty()) {
     spec.dataset = o.dataset;
     spec.dataset_path = resolve_dataset_path(o);
-    if (!std::filesystem::is_regular_file(spec.dataset_path))
-      throw UsageError("--dataset: no dataset file at '" + spec.dataset_path + "'");
+    check_prior_dataset(spec.dataset_path, o.scenario);
   }
   nlohmann::json sets = nlohmann::json::object();
   try {
@@ -55,6 +71,7 @@ int run_command(const RunOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  make_output_folder(o.out, "--out");  // last: nothing is written before every input is checked
   return run_job(spec);
 }
 

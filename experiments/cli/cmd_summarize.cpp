@@ -5,9 +5,12 @@
 
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
+#include "experiments/cli/output_folder.hpp"
 #include "experiments/report/animations.hpp"
+#include "experiments/report/interruption.hpp"
 #include "experiments/report/summarize.hpp"
 #include "experiments/report/write_reports.hpp"
+#include "experiments/sweep/attempt.hpp"  // signal_name
 
 namespace rapid {
 
@@ -20,21 +23,32 @@ struct SummarizeOptions {
   std::string out;  // default: the sweep folder
   bool no_plots = false;
   bool no_animations = false;
+  bool force = false;
 };
 
 }  // namespace
 
-int summarize_sweep(const std::string& sweep_dir, const std::string& out_dir, bool plots, bool animations) {
+int summarize_sweep(const std::string& sweep_dir, const std::string& out_dir, bool plots, bool animations, bool force) {
+  // A stop signal from here on ends the command with 130 and stops scripts/plot with it.
+  const ReportInterruption interruption;
+  const auto interrupted = [] {
+    if (ReportInterruption::signal() == 0) return false;
+    std::cerr << "rapid summarize: interrupted by " << signal_name(ReportInterruption::signal()) << "\n";
+    return true;
+  };
   const Summary summary = check_option("SWEEP_DIR", [&] { return build_summary(sweep_dir); });
+  if (interrupted()) return kExitInterrupted;
   const fs::path out = out_dir.empty() ? fs::path(sweep_dir) : fs::path(out_dir);
-  std::error_code ec;
-  fs::create_directories(out, ec);
-  if (!fs::is_directory(out)) throw UsageError("--out: cannot create folder '" + out.string() + "'");
+  if (!out_dir.empty()) refuse_foreign_folder(out, "--out", {"summary.json", "grid.json"}, "a reports or sweep folder", force);
+  make_output_folder(out, out_dir.empty() ? "SWEEP_DIR" : "--out");
   write_reports(summary, out, std::cout);
+  if (interrupted()) return kExitInterrupted;
   if (!plots) return kExitOk;
-  const bool figures_ok = draw_figures(out, std::cout);
+  const FiguresResult figures = draw_figures(out, std::cout);
+  if (interrupted()) return kExitInterrupted;
   if (animations) write_animations(summary, out, std::cout);
-  return figures_ok ? kExitOk : kExitFailed;
+  if (interrupted()) return kExitInterrupted;
+  return figures == FiguresResult::kDone ? kExitOk : kExitFailed;
 }
 
 Command add_summarize_command(CLI::App& parent) {
@@ -42,10 +56,15 @@ Command add_summarize_command(CLI::App& parent) {
   CLI::App* sub = parent.add_subcommand(
       "summarize", "Write Table I (md, tex, csv), summary.json, claims.md and Figures 2-3 from a sweep folder");
   sub->add_option("sweep_dir", o->dir, "the sweep folder (results/<grid name>)")->required();
-  sub->add_option("--out", o->out, "write the reports here instead of into the sweep folder");
+  const CLI::Option* out = sub->add_option("--out", o->out, "write the reports here instead of into the sweep folder");
   sub->add_flag("--no-plots", o->no_plots, "skip scripts/plot (figures and animations)");
   sub->add_flag("--no-animations", o->no_animations, "skip the best and worst cells' animations (docs/traces.md)");
-  return {sub, [o] { return summarize_sweep(o->dir, o->out, !o->no_plots, !o->no_animations); }};
+  sub->add_flag("--force", o->force, "write into an --out folder that holds other files (overwriting table.md, …)");
+  return {sub, [o, out] {
+            // `--out ""` is a mistake, not a request for the default.
+            if (out->count() > 0 && o->out.empty()) throw UsageError("--out: must name a folder, got an empty path");
+            return summarize_sweep(o->dir, o->out, !o->no_plots, !o->no_animations, o->force);
+          }};
 }
 
 }  // namespace rapid

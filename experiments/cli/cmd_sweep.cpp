@@ -8,8 +8,10 @@
 #include <thread>
 
 #include "core/atomic_file.hpp"
+#include "experiments/cli/checks.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
+#include "experiments/cli/output_folder.hpp"
 #include "experiments/sweep/grid.hpp"
 #include "experiments/sweep/local_backend.hpp"
 #include "experiments/sweep/lock.hpp"
@@ -28,6 +30,7 @@ namespace fs = std::filesystem;
 
 struct SweepOptions {
   std::string grid, only, backend = "local", out;
+  bool out_given = false;  // `--out ""` is a mistake, not a request for the default
   int jobs = 0;  // 0: the grid's "jobs", else the number of cores
   bool force = false;
   bool no_summary = false;
@@ -77,6 +80,11 @@ void update_grid_file(const SweepFolder& folder, std::ostream& notes) {
   write_file_atomic(path.string(), text);
 }
 
+// How a message names the sweep folder: the option, or where its default came from.
+std::string out_option(const SweepOptions& o, const fs::path& dir) {
+  return o.out_given ? "--out" : "--out (default " + dir.string() + ")";
+}
+
 std::unique_ptr<SweepLock> lock_folder(const fs::path& dir) {
   try {
     return std::make_unique<SweepLock>(dir);
@@ -114,7 +122,6 @@ int submit_to_slurm(const SweepOptions& o, SweepFolder& folder, const Selection&
   SlurmOptions options = o.slurm;
   options.binary = current_executable();
   const fs::path& dir = folder.dir;
-  if (fs::exists(dir) && !fs::is_directory(dir)) throw UsageError("--out: '" + dir.string() + "' is not a folder");
   if (o.dry_run) {
     const SlurmPlan plan = plan_slurm_sweep(folder, selection, o.force);
     if (plan.arrays.empty()) std::cerr << "rapid sweep: nothing to submit: all " << plan.needed << " jobs are done\n";
@@ -132,7 +139,8 @@ int submit_to_slurm(const SweepOptions& o, SweepFolder& folder, const Selection&
   } catch (const SlurmError& e) {
     std::cerr << "rapid sweep: warning: cannot check for earlier submissions still queued: " << e.what() << "\n";
   }
-  fs::create_directories(dir);
+  refuse_foreign_folder(dir, out_option(o, dir), {sweep_files::kGrid}, "a sweep folder", o.force);
+  make_output_folder(dir, out_option(o, dir));
   const auto lock = lock_folder(dir);
   update_grid_file(folder, std::cerr);
   SlurmPlan plan = plan_slurm_sweep(folder, selection, o.force);
@@ -177,7 +185,8 @@ int sweep_command(const SweepOptions& o) {
   }
   if (std::find(kBackends.begin(), kBackends.end(), o.backend) == kBackends.end())
     throw UsageError("--backend: '" + o.backend + "' is not available; expected local or slurm");
-  const fs::path dir = o.out.empty() ? fs::path("results") / grid.name : fs::path(o.out);
+  if (o.out_given && o.out.empty()) throw UsageError("--out: must name a folder, got an empty path");
+  const fs::path dir = o.out_given ? fs::path(o.out) : fs::path("results") / grid.name;
   SweepFolder folder = make_sweep_folder(dir, grid);
   LocalSweepOptions options;
   try {
@@ -198,8 +207,8 @@ int sweep_command(const SweepOptions& o) {
   options.terminal = ::isatty(STDERR_FILENO) != 0;
   options.progress = &std::cerr;
 
-  if (fs::exists(dir) && !fs::is_directory(dir)) throw UsageError("--out: '" + dir.string() + "' is not a folder");
-  fs::create_directories(dir);
+  refuse_foreign_folder(dir, out_option(o, dir), {sweep_files::kGrid}, "a sweep folder", o.force);
+  make_output_folder(dir, out_option(o, dir));
   const auto lock = lock_folder(dir);
   update_grid_file(folder, std::cerr);
 
@@ -220,10 +229,12 @@ int sweep_command(const SweepOptions& o) {
   for (const JobReport& j : report.jobs)
     if (j.state == "failed" || j.state == "diverged" || j.state == "blocked")
       std::cout << "  " << j.state << " " << j.id << ": " << j.error << "\n";
-  if (report.interrupted_by) return 130;
-  // Refresh the reports from whatever records exist (a partial sweep or an --only rerun too).
-  if (!o.no_summary) summarize_sweep(dir.string(), "", /*plots=*/true, !o.no_animations);
-  return report.all_ok() ? kExitOk : kExitFailed;
+  if (report.interrupted_by) return kExitInterrupted;
+  // Refresh the reports from whatever records exist (a partial sweep or an --only rerun too). A
+  // signal meanwhile is an interrupted sweep (130); reports that fail make it a failed one.
+  const int reports = o.no_summary ? kExitOk : summarize_sweep(dir.string(), "", /*plots=*/true, !o.no_animations);
+  if (reports == kExitInterrupted) return kExitInterrupted;
+  return report.all_ok() && reports == kExitOk ? kExitOk : kExitFailed;
 }
 
 }  // namespace
@@ -239,7 +250,7 @@ Command add_sweep_command(CLI::App& parent) {
   sub->add_flag("--no-summary", o->no_summary, "do not refresh the reports (rapid summarize) at the end");
   sub->add_flag("--no-animations", o->no_animations, "refresh the reports without the animations");
   sub->add_option("--backend", o->backend, "where jobs run: local (this machine) or slurm (submit job arrays)");
-  sub->add_option("--out", o->out, "sweep folder (default: results/<grid name>)");
+  const CLI::Option* out = sub->add_option("--out", o->out, "sweep folder (default: results/<grid name>)");
   sub->add_option("--job-timeout", o->job_timeout,
                   "local: stop a job that runs longer than this, e.g. 45m or 2h; it counts as a failed attempt");
   const std::vector<CLI::Option*> slurm_only = {
@@ -256,9 +267,10 @@ Command add_sweep_command(CLI::App& parent) {
   sub->add_flag("--dry-run", o->dry_run, "slurm: print the sbatch scripts instead of submitting them");
   sub->add_option("--run-job", o->run_job, "run job I of --job-list in the sweep folder given as GRID (an array task)")
       ->group("")
-      ->check(CLI::NonNegativeNumber);
+      ->check(count_validator(0));
   sub->add_option("--job-list", o->job_list, "the task list of --run-job, relative to the sweep folder")->group("");
-  return {sub, [o, slurm_only] {
+  return {sub, [o, slurm_only, out] {
+            o->out_given = out->count() > 0;
             for (const CLI::Option* opt : slurm_only) o->slurm_option_given = o->slurm_option_given || opt->count() > 0;
             return sweep_command(*o);
           }};

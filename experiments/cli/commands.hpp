@@ -24,7 +24,9 @@ Command add_budget_command(CLI::App& parent);
 
 // `rapid summarize SWEEP_DIR [--out DIR]`, also run by `rapid sweep` when it ends: the reports
 // (with `plots` the figures, with `animations` too the best and worst cells' animations) into
-// DIR, default the sweep folder. Returns the exit code.
-int summarize_sweep(const std::string& sweep_dir, const std::string& out_dir, bool plots, bool animations);
+// DIR, default the sweep folder. Returns the exit code. With `force` an --out folder that holds
+// other files is written into anyway.
+int summarize_sweep(const std::string& sweep_dir, const std::string& out_dir, bool plots, bool animations,
+                    bool force = false);
 
 }  // namespace rapid

@@ -28,5 +28,7 @@ auto check_option(const std::string& option, Check&& check) -> decltype(check())
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailed = 1;
 inline constexpr int kExitUsage = 2;
+// A sweep, or its reports, stopped by SIGINT, SIGTERM or SIGHUP (128 + SIGINT, as a shell shows Ctrl-C).
+inline constexpr int kExitInterrupted = 130;
 
 }  // namespace rapid

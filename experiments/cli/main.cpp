@@ -1,5 +1,6 @@
 // `rapid`: the harness's one command line. See docs/design.md §Command line and the README.
 #include <iostream>
+#include <string>
 #include <vector>
 
 #include "experiments/cli/commands.hpp"
@@ -20,6 +21,19 @@ int main(int argc, char** argv) {
       rapid::add_budget_command(app),
   };
 
+  // CLI11 answers `rapid frobnicate` with "A subcommand is required"; name the unknown one.
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string names;
+    bool known = false;
+    for (const rapid::Command& command : commands) {
+      known = known || command.app->get_name() == argv[1];
+      names += (names.empty() ? "" : ", ") + command.app->get_name();
+    }
+    if (!known) {
+      std::cerr << "rapid: error: unknown subcommand '" << argv[1] << "'; expected one of " << names << "\n";
+      return rapid::kExitUsage;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -16,10 +16,11 @@ struct LoadedRecord {
   bool hash_checked = true;              // false when the dataset behind it is gone
 };
 
-// A record counts (status ok) only when it parses, has the run-record schema, names this cell,
-// says ok with a finite final return, and carries the config hash the grid asks for now (the
-// same "done" rule as the runner, docs/design.md §Sweeps). When the cell's dataset file is missing the hash
-// cannot be recomputed: the record is then taken as it is and hash_checked is false.
+// The record judged as the runner and `rapid status` judge it (sweep/cell_record.hpp): it counts
+// (status ok) only when it parses, has the run-record schema, names this cell, says ok with a
+// finite final return, and carries the config hash the grid asks for now. When the cell's
+// dataset file is missing the hash cannot be recomputed: the record is then taken as it is and
+// hash_checked is false.
 LoadedRecord load_cell_record(const SweepFolder& folder, const SweepJob& cell);
 
 }  // namespace rapid

@@ -5,19 +5,49 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstdlib>
 #include <vector>
+
+#include "experiments/report/interruption.hpp"
 
 namespace rapid {
 
 namespace fs = std::filesystem;
 
-int run_command(const std::vector<std::string>& argv, bool quiet) {
+namespace {
+
+// Waits for `pid`. Polls, so that a stop signal caught meanwhile (interruption.hpp) stops the
+// child too: SIGTERM, then SIGKILL if it is still there after a grace period.
+ScriptExit wait_for(pid_t pid) {
+  constexpr int kPollMs = 20, kGraceMs = 5000;
+  int status = 0, waited_after_stop_ms = 0;
+  bool stopping = false;
+  for (;;) {
+    const pid_t r = ::waitpid(pid, &status, WNOHANG);
+    if (r == pid) break;
+    if (r < 0 && errno != EINTR) return {};
+    if (!stopping && ReportInterruption::signal() != 0) {
+      ::kill(pid, SIGTERM);
+      stopping = true;
+    }
+    if (stopping && (waited_after_stop_ms += kPollMs) == kGraceMs) ::kill(pid, SIGKILL);
+    ::usleep(kPollMs * 1000);
+  }
+  ScriptExit e;
+  e.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  e.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+  e.interrupted = stopping;
+  return e;
+}
+
+// fork + exec without a shell (paths may hold spaces); stdout/stderr silenced when `quiet`.
+ScriptExit run(const std::vector<std::string>& argv, bool quiet) {
   std::vector<char*> args;
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
   const pid_t pid = ::fork();
-  if (pid < 0) return -1;
+  if (pid < 0) return {};
   if (pid == 0) {
     if (quiet) {
       const int devnull = ::open("/dev/null", O_WRONLY);
@@ -29,10 +59,14 @@ int run_command(const std::vector<std::string>& argv, bool quiet) {
     ::execv(args[0], args.data());
     ::_exit(127);
   }
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return wait_for(pid);
+}
+
+}  // namespace
+
+int run_command(const std::vector<std::string>& argv, bool quiet) {
+  const ScriptExit e = run(argv, quiet);
+  return e.interrupted ? -1 : e.code;
 }
 
 std::optional<fs::path> find_plot_script() {
@@ -57,12 +91,12 @@ std::string plot_python() {
 }
 
 bool python_has_matplotlib(const std::string& python) {
-  return run_command({python, "-c", "import matplotlib"}, /*quiet=*/true) == 0;
+  return run({python, "-c", "import matplotlib"}, /*quiet=*/true).ok();
 }
 
-int run_plot_script(const std::string& python, const fs::path& script, const fs::path& summary_json,
+ScriptExit run_plot_script(const std::string& python, const fs::path& script, const fs::path& summary_json,
                     const fs::path& out_dir) {
-  return run_command({python, script.string(), "--summary", summary_json.string(), "--out", out_dir.string()}, /*quiet=*/false);
+  return run({python, script.string(), "--summary", summary_json.string(), "--out", out_dir.string()}, /*quiet=*/false);
 }
 
 }  // namespace rapid

@@ -23,9 +23,17 @@ std::string plot_python();
 // Whether the interpreter runs and can import matplotlib.
 bool python_has_matplotlib(const std::string& python);
 
-// Runs PYTHON SCRIPT --summary SUMMARY_JSON --out OUT_DIR; returns its exit code (-1 when it could
-// not be started or was killed).
-int run_plot_script(const std::string& python, const std::filesystem::path& script,
+// How a script ended: its exit code, or the signal that killed it; `interrupted` when rapid
+// itself caught a stop signal meanwhile and stopped it (interruption.hpp).
+struct ScriptExit {
+  int code = -1;  // -1: not started, or killed by `signal`
+  int signal = 0;
+  bool interrupted = false;
+  bool ok() const { return code == 0 && !interrupted; }
+};
+
+// Runs PYTHON SCRIPT --summary SUMMARY_JSON --out OUT_DIR and waits for it.
+ScriptExit run_plot_script(const std::string& python, const std::filesystem::path& script,
                     const std::filesystem::path& summary_json, const std::filesystem::path& out_dir);
 
 }  // namespace rapid

@@ -4,8 +4,10 @@
 
 #include "core/atomic_file.hpp"
 #include "experiments/report/claims_markdown.hpp"
+#include "experiments/report/interruption.hpp"
 #include "experiments/report/plot.hpp"
 #include "experiments/report/tables.hpp"
+#include "experiments/sweep/attempt.hpp"  // signal_name
 
 namespace rapid {
 
@@ -29,24 +31,28 @@ void write_reports(const Summary& summary, const fs::path& out_dir, std::ostream
   for (const ClaimResult& c : summary.claims) out << "  " << c.id << " " << c.verdict << ": " << c.reason << "\n";
 }
 
-bool draw_figures(const fs::path& out_dir, std::ostream& out) {
+FiguresResult draw_figures(const fs::path& out_dir, std::ostream& out) {
   const auto script = find_plot_script();
   if (!script) {
     out << "figures skipped: scripts/plot not found\n";
-    return true;
+    return FiguresResult::kDone;
   }
   const std::string python = plot_python();
   if (!python_has_matplotlib(python)) {
+    if (ReportInterruption::signal() != 0) return FiguresResult::kInterrupted;
     out << "figures skipped: " << python << " has no matplotlib (install python3-matplotlib)\n";
-    return true;
+    return FiguresResult::kDone;
   }
   out.flush();  // the script writes to the same stdout
-  const int code = run_plot_script(python, *script, out_dir / "summary.json", out_dir);
-  if (code != 0) {
-    std::cerr << "rapid summarize: scripts/plot failed (exit " << code << "); the tables and summary.json are written\n";
-    return false;
+  const ScriptExit e = run_plot_script(python, *script, out_dir / "summary.json", out_dir);
+  if (e.interrupted) return FiguresResult::kInterrupted;
+  if (e.code != 0) {
+    const std::string how = e.signal ? "was killed by " + signal_name(e.signal)
+                                     : e.code < 0 ? "could not be started" : "failed (exit " + std::to_string(e.code) + ")";
+    std::cerr << "rapid summarize: scripts/plot " << how << "; the tables and summary.json are written\n";
+    return FiguresResult::kFailed;
   }
-  return true;
+  return FiguresResult::kDone;
 }
 
 }  // namespace rapid

@@ -15,8 +15,10 @@ namespace rapid {
 void write_reports(const Summary& summary, const std::filesystem::path& out_dir, std::ostream& out);
 
 // Runs scripts/plot on out_dir/summary.json, writing the figures beside it. When there is no
-// script or the interpreter has no matplotlib it says so on `out` and draws nothing. Returns
-// false only when the script ran and failed.
-bool draw_figures(const std::filesystem::path& out_dir, std::ostream& out);
+// script or the interpreter has no matplotlib it says so on `out` and draws nothing.
+// kFailed only when the script ran and failed, kInterrupted when a stop signal stopped it
+// (interruption.hpp).
+enum class FiguresResult { kDone, kFailed, kInterrupted };
+FiguresResult draw_figures(const std::filesystem::path& out_dir, std::ostream& out);
 
 }  // namespace rapid

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "experiments/run/json_input.hpp"
 
 namespace rapid {
 
@@ -26,15 +27,15 @@ constexpr Bounds at_least(double x) { return {.lo = x}; }
 template <typename T>
 T typed(const std::string& key, const nlohmann::json& v) {
   if constexpr (std::is_floating_point_v<T>) {
-    if (!v.is_number()) reject(key, "expects a number, got " + v.dump());
-    if (!std::isfinite(v.get<double>())) reject(key, "expects a finite number, got " + v.dump());
+    if (!v.is_number()) reject(key, "expects a number, got " + json_excerpt(v));
+    if (!std::isfinite(v.get<double>())) reject(key, "expects a finite number, got " + json_excerpt(v));
   } else if constexpr (std::is_integral_v<T>) {
-    if (!v.is_number_integer()) reject(key, "expects an integer, got " + v.dump());
+    if (!v.is_number_integer()) reject(key, "expects an integer, got " + json_excerpt(v));
   } else {
     static_assert(std::is_same_v<T, std::vector<int>>);
-    if (!v.is_array()) reject(key, "expects a list of integers, got " + v.dump());
+    if (!v.is_array()) reject(key, "expects a list of integers, got " + json_excerpt(v));
     for (const auto& e : v)
-      if (!e.is_number_integer()) reject(key, "expects a list of integers, got " + v.dump());
+      if (!e.is_number_integer()) reject(key, "expects a list of integers, got " + json_excerpt(v));
     if (v.empty()) reject(key, "needs at least one entry");
   }
   return v.get<T>();
@@ -48,12 +49,12 @@ const char* type_name() {
 }
 
 void check_bounds(const std::string& key, const Bounds& bounds, double x, const nlohmann::json& v) {
-  if (!bounds.contains(x)) reject(key, "must be " + bounds.text() + ", got " + v.dump());
+  if (!bounds.contains(x)) reject(key, "must be " + bounds.text() + ", got " + json_excerpt(v));
 }
 
 void check_bounds(const std::string& key, const Bounds& bounds, const std::vector<int>& xs, const nlohmann::json& v) {
   for (int x : xs)
-    if (!bounds.contains(x)) reject(key, "entries must each be " + bounds.text() + ", got " + v.dump());
+    if (!bounds.contains(x)) reject(key, "entries must each be " + bounds.text() + ", got " + json_excerpt(v));
 }
 
 // The struct that holds a field decides the part the key configures.

@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
+
+#include "experiments/run/json_input.hpp"
 
 namespace rapid {
 
@@ -34,15 +35,14 @@ void check_profile(const std::string& profile, const std::string& scenario) {
 
 nlohmann::json default_config_json(const std::string& scenario, const std::string& profile) {
   const std::string path = config_path(scenario, profile);
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("missing config file " + path);
+  nlohmann::json j;
   try {
-    nlohmann::json j = nlohmann::json::parse(in);
-    if (!j.is_object()) throw std::runtime_error("not a JSON object");
-    return j;
-  } catch (const std::exception& e) {
+    j = read_json_input(path);
+  } catch (const std::invalid_argument& e) {
     throw std::runtime_error("config file " + path + ": " + e.what());
   }
+  if (!j.is_object()) throw std::runtime_error("config file " + path + ": not a JSON object");
+  return j;
 }
 
 namespace {

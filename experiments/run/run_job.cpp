@@ -7,8 +7,8 @@
 #include "core/atomic_file.hpp"
 #include "core/clock.hpp"
 #include "core/dataset.hpp"
-#include "core/dataset_io.hpp"
 #include "envs/env.hpp"
+#include "experiments/run/prior_dataset.hpp"
 #include "experiments/run/record.hpp"
 #include "experiments/run/run_config.hpp"
 #include "experiments/run/trainer.hpp"
@@ -30,15 +30,9 @@ void remove_leftovers(const JobSpec& spec) {
 }
 
 // The prior buffer of a job whose algorithm uses prior data: its dataset, checked against the
-// scenario's dimensions and the action box.
+// scenario (prior_dataset.hpp).
 ReplayBuffer load_prior(const JobSpec& spec, const Env& env) {
-  const Dataset data = read_dataset(spec.dataset_path, {env.obs_dim(), env.act_dim(), spec.scenario});
-  // Every environment's action box is [-1, 1]; data outside it came from another task.
-  const float max_abs = data.actions.cwiseAbs().maxCoeff();
-  if (max_abs > 1.0f)
-    throw std::runtime_error("dataset " + spec.dataset_path + ": actions must lie in [-1, 1], found |a| = " +
-                             std::to_string(max_abs));
-  return make_prior_buffer(data);
+  return make_prior_buffer(read_prior_dataset(spec.dataset_path, spec.scenario, env.obs_dim(), env.act_dim()));
 }
 
 }  // namespace

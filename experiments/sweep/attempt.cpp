@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "experiments/run/provenance.hpp"
+#include "experiments/sweep/cell_record.hpp"
 
 namespace rapid {
 
@@ -33,8 +34,12 @@ namespace {
 // "" when the job's marker confirms the success its exit code claims.
 std::string check_success(const SweepFolder& folder, const SweepJob& job, const std::string& expected_hash) {
   const auto marker = read_json_file(folder.path(job_marker_path(job)));
-  if (!marker || marker->value("status", "") != "ok") return "exited 0 but " + job_marker_path(job) + " does not say ok";
-  if (job.kind == JobKind::kCell && marker->value("config_hash", "") != expected_hash)
+  if (!marker || !marker->is_object() || marker->value("status", nlohmann::json()) != "ok")
+    return "exited 0 but " + job_marker_path(job) + " does not say ok";
+  if (job.kind != JobKind::kCell) return "";
+  // The same judgement as job_is_done: a record it calls corrupt is no success.
+  if (const auto problem = record_problem(*marker, job)) return "exited 0 but " + *problem;
+  if (marker->value("config_hash", nlohmann::json()) != expected_hash)
     return "exited 0 but its record's config_hash is not the one the grid asks for";
   return "";
 }
@@ -52,7 +57,7 @@ AttemptVerdict judge_attempt(const SweepFolder& folder, const SweepJob& job, con
   if (exit_code == 2) return {"failed", false, "usage error: " + last_log_line(folder, job)};
   if (exit_code == 1 && job.kind == JobKind::kCell) {
     const auto record = read_json_file(folder.path(job_marker_path(job)));
-    if (record && record->value("config_hash", "") == expected_hash) {
+    if (record && !record_problem(*record, job) && (*record)["config_hash"] == expected_hash) {
       const std::string error = record->contains("error") && (*record)["error"].is_string()
                                     ? (*record)["error"].get<std::string>()
                                     : last_log_line(folder, job);

@@ -2,14 +2,13 @@
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 #include "algos/registry.hpp"
 #include "envs/env.hpp"
 #include "experiments/run/dataset_build.hpp"
+#include "experiments/run/json_input.hpp"
 #include "experiments/run/run_config.hpp"
 
 namespace rapid {
@@ -51,12 +50,15 @@ class GridChecker {
   std::string name(const json& doc) const {
     if (!doc.contains("name")) fail("name", "missing (a string naming the sweep)");
     const json& v = doc["name"];
-    if (!v.is_string()) fail("name", "expected a string, got " + v.dump());
+    if (!v.is_string()) fail("name", "expected a string, got " + json_excerpt(v));
     const std::string s = v.get<std::string>();
     const bool safe = !s.empty() && s != "." && s != ".." && std::all_of(s.begin(), s.end(), [](char c) {
       return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-';
     });
-    if (!safe) fail("name", "'" + s + "' must be non-empty and use only letters, digits, '.', '_' and '-'");
+    if (!safe) fail("name", "'" + (s.size() > 60 ? s.substr(0, 60) + "…" : s) + "' must be non-empty and use only letters, digits, '.', '_' and '-'");
+    // It names the default sweep folder, so it must fit a file name (255 bytes) with room to spare.
+    if (s.size() > kMaxGridNameLength)
+      fail("name", "is " + std::to_string(s.size()) + " characters long; at most " + std::to_string(kMaxGridNameLength));
     return s;
   }
 
@@ -67,7 +69,7 @@ class GridChecker {
     std::vector<std::string> out;
     for (std::size_t i = 0; i < axis.size(); ++i) {
       const std::string at = field + "[" + std::to_string(i) + "]";
-      if (!axis[i].is_string()) fail(at, "expected a " + what + " name (string), got " + axis[i].dump());
+      if (!axis[i].is_string()) fail(at, "expected a " + what + " name (string), got " + json_excerpt(axis[i]));
       const std::string s = axis[i].get<std::string>();
       if (std::find(allowed.begin(), allowed.end(), s) == allowed.end())
         fail(at, "unknown " + what + " '" + s + "'; expected one of " + joined(allowed));
@@ -80,29 +82,43 @@ class GridChecker {
   std::vector<std::uint64_t> seed_axis(const json& doc) const {
     const json& axis = axis_array(doc, "seeds");
     std::vector<std::uint64_t> out;
+    std::set<std::uint64_t> seen;  // not a scan of `out`: a long seed list must not take quadratic time
     for (std::size_t i = 0; i < axis.size(); ++i) {
       const std::string at = "seeds[" + std::to_string(i) + "]";
       const std::uint64_t seed = non_negative_integer(axis[i], at);
       // `rapid run --seed` takes at most 19 digits.
       if (seed > 9'999'999'999'999'999'999ULL) fail(at, "seed " + std::to_string(seed) + " is too large (at most 19 digits)");
-      if (std::find(out.begin(), out.end(), seed) != out.end()) fail(at, "duplicate seed " + std::to_string(seed));
+      if (!seen.insert(seed).second) fail(at, "duplicate seed " + std::to_string(seed));
       out.push_back(seed);
     }
     return out;
   }
 
+  // The runner keeps every job in memory and scans them while it schedules; a grid far beyond any
+  // study (the paper grid is about 500 jobs) is refused rather than left to stall it.
+  void job_count(const Grid& grid) const {
+    std::size_t prior = 0;
+    for (const std::string& a : grid.algos) prior += find_algorithm(a).uses_prior;
+    const std::size_t per_seed = grid.datasets.size() * prior + (grid.algos.size() - prior);
+    const std::size_t dataset_stage = prior > 0 ? 2 : 0;  // the reference and the dataset job
+    const std::size_t jobs = grid.scenarios.size() * (dataset_stage + per_seed * grid.seeds.size());
+    if (jobs > kMaxGridJobs)
+      fail("seeds", "the grid expands to " + std::to_string(jobs) + " jobs; at most " + std::to_string(kMaxGridJobs) +
+                        " per sweep (split it into several grids)");
+  }
+
   std::uint64_t non_negative_integer(const json& v, const std::string& field) const {
-    if (!v.is_number_integer()) fail(field, "expected a non-negative integer, got " + v.dump());
+    if (!v.is_number_integer()) fail(field, "expected a non-negative integer, got " + json_excerpt(v));
     if (v.is_number_unsigned()) return v.get<std::uint64_t>();
     const auto x = v.get<std::int64_t>();
-    if (x < 0) fail(field, "expected a non-negative integer, got " + v.dump());
+    if (x < 0) fail(field, "expected a non-negative integer, got " + json_excerpt(v));
     return static_cast<std::uint64_t>(x);
   }
 
   const json& object_or_empty(const json& doc, const std::string& field) const {
     static const json kEmpty = json::object();
     if (!doc.contains(field)) return kEmpty;
-    if (!doc[field].is_object()) fail(field, "expected an object, got " + doc[field].dump());
+    if (!doc[field].is_object()) fail(field, "expected an object, got " + json_excerpt(doc[field]));
     return doc[field];
   }
 
@@ -110,7 +126,7 @@ class GridChecker {
   const json& axis_array(const json& doc, const std::string& field) const {
     if (!doc.contains(field)) fail(field, "missing (a non-empty array)");
     const json& axis = doc[field];
-    if (!axis.is_array()) fail(field, "expected an array, got " + axis.dump());
+    if (!axis.is_array()) fail(field, "expected an array, got " + json_excerpt(axis));
     if (axis.empty()) fail(field, "must not be empty");
     return axis;
   }
@@ -135,7 +151,7 @@ ReferenceSettings parse_reference(const GridChecker& check, const json& ref, con
   }
   if (ref.contains("noise_std")) {
     const json& v = ref["noise_std"];
-    if (!v.is_number() || v.get<double>() < 0) check.fail("reference.noise_std", "expected a number ≥ 0, got " + v.dump());
+    if (!v.is_number() || v.get<double>() < 0) check.fail("reference.noise_std", "expected a number ≥ 0, got " + json_excerpt(v));
     r.noise_std = v.get<float>();
   }
   return r;
@@ -175,7 +191,7 @@ void check_overrides(const GridChecker& check, const Grid& grid) {
     const auto& names = env_names();
     if (std::find(names.begin(), names.end(), scenario) == names.end())
       check.fail("scenario_config." + scenario, "unknown scenario '" + scenario + "'; expected one of " + joined(names));
-    if (!overrides.is_object()) check.fail("scenario_config." + scenario, "expected an object, got " + overrides.dump());
+    if (!overrides.is_object()) check.fail("scenario_config." + scenario, "expected an object, got " + json_excerpt(overrides));
   }
   std::vector<std::string> to_check = grid.scenarios;
   for (const auto& [scenario, overrides] : grid.scenario_config.items())
@@ -216,7 +232,7 @@ Grid parse_grid(const json& doc, const std::string& label) {
   Grid grid;
   grid.name = check.name(doc);
   if (doc.contains("description")) {
-    if (!doc["description"].is_string()) check.fail("description", "expected a string, got " + doc["description"].dump());
+    if (!doc["description"].is_string()) check.fail("description", "expected a string, got " + json_excerpt(doc["description"]));
     grid.description = doc["description"].get<std::string>();
   }
   grid.scenarios = check.name_axis(doc, "scenarios", env_names(), "scenario");
@@ -224,12 +240,13 @@ Grid parse_grid(const json& doc, const std::string& label) {
   grid.algos = check.name_axis(doc, "algos", algo_names(), "algorithm");
   grid.seeds = check.seed_axis(doc);
   if (doc.contains("profile")) {
-    if (!doc["profile"].is_string()) check.fail("profile", "expected a string, got " + doc["profile"].dump());
+    if (!doc["profile"].is_string()) check.fail("profile", "expected a string, got " + json_excerpt(doc["profile"]));
     grid.profile = doc["profile"].get<std::string>();
     const auto& names = config_profiles();
     if (std::find(names.begin(), names.end(), grid.profile) == names.end())
       check.fail("profile", "unknown profile '" + grid.profile + "'; expected one of " + joined(names));
   }
+  check.job_count(grid);
   grid.config = check.object_or_empty(doc, "config");
   grid.scenario_config = check.object_or_empty(doc, "scenario_config");
   bool any_prior = false;
@@ -242,7 +259,7 @@ Grid parse_grid(const json& doc, const std::string& label) {
   }
   if (doc.contains("jobs")) {
     const std::uint64_t j = check.non_negative_integer(doc["jobs"], "jobs");
-    if (j == 0 || j > 1024) check.fail("jobs", "expected a worker count from 1 to 1024, got " + doc["jobs"].dump());
+    if (j == 0 || j > 1024) check.fail("jobs", "expected a worker count from 1 to 1024, got " + json_excerpt(doc["jobs"]));
     grid.jobs = static_cast<int>(j);
   }
   check_overrides(check, grid);
@@ -261,15 +278,11 @@ Grid parse_grid(const json& doc, const std::string& label) {
 }
 
 Grid load_grid(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument("grid " + path + ": cannot read the file");
-  std::stringstream text;
-  text << in.rdbuf();
   json doc;
   try {
-    doc = json::parse(text.str());
-  } catch (const json::parse_error& e) {
-    throw std::invalid_argument("grid " + path + ": not valid JSON: " + e.what());
+    doc = read_json_input(path, kMaxGridBytes);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("grid " + path + ": " + e.what());
   }
   return parse_grid(doc, path);
 }

@@ -3,7 +3,7 @@
 // are trained. Loading validates everything strictly, so a typo fails before anything is written.
 //
 // Schema (JSON object; every key not listed is an error):
-//   "name"            string of [A-Za-z0-9._-]: the default sweep folder is results/<name>/
+//   "name"            string of [A-Za-z0-9._-], at most 100 characters: the default sweep folder is results/<name>/
 //   "description"     optional string
 //   "scenarios"       non-empty array of scenario names (env_names()), no duplicates
 //   "datasets"        non-empty array of initial|medium|final|final+medium, no duplicates
@@ -50,6 +50,12 @@ struct Grid {
   nlohmann::json normalized;
 };
 
+
+// A grid is a page of JSON; anything much larger is a mistake (or /dev/zero).
+inline constexpr std::size_t kMaxGridBytes = std::size_t{1} << 20;
+inline constexpr std::size_t kMaxGridNameLength = 100;
+// Jobs one grid may expand to: 20 times the paper grid (docs/sweeps.md).
+inline constexpr std::size_t kMaxGridJobs = 10000;
 
 // Reads and validates a grid file. Throws std::invalid_argument with one line
 // "grid PATH: FIELD: problem" (e.g. "grid quick.json: algos[2]: unknown algorithm 'sac'; …").

@@ -122,6 +122,7 @@ class LocalRunner {
   // Dependencies come earlier in the graph, so one forward pass settles chains.
   void promote_waiting_jobs() {
     for (std::size_t i = 0; i < runs_.size(); ++i) {
+      if (pool_.interruption()) return;  // a pass reads files per job: a signal must not wait for it
       JobRun& r = runs_[i];
       if (r.phase != Phase::kWaiting) continue;
       const SweepJob& job = folder_.graph.jobs[i];

@@ -1,13 +1,14 @@
 #include "experiments/sweep/state.hpp"
 
 #include <fstream>
-#include <sstream>
 
 #include "core/atomic_file.hpp"
 #include "core/hash.hpp"
 #include "experiments/run/job.hpp"
+#include "experiments/run/json_input.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/run/run_config.hpp"
+#include "experiments/sweep/cell_record.hpp"
 
 namespace rapid {
 
@@ -54,13 +55,11 @@ std::string dataset_stage_inputs_hash(const SweepFolder& folder, const SweepJob&
 }
 
 std::optional<nlohmann::json> read_json_file(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) return std::nullopt;
-  std::stringstream text;
-  text << in.rdbuf();
-  nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded()) return std::nullopt;
-  return j;
+  try {
+    return read_json_input(path.string());  // bounded: a hostile file cannot hang or crash the reader
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
 }
 
 void write_outcome(const SweepFolder& folder, const SweepJob& job, const Outcome& o) {
@@ -101,15 +100,10 @@ std::string marker_config_hash(const std::optional<nlohmann::json>& marker) {
 }  // namespace
 
 bool job_is_done(const SweepFolder& folder, const SweepJob& job) {
+  // A cell: the one judgement of its record that status and the reports share.
+  if (job.kind == JobKind::kCell) return read_cell_record(folder, job).done();
   const auto marker = read_json_file(folder.path(job_marker_path(job)));
   if (!says_ok(marker)) return false;
-  if (job.kind == JobKind::kCell) {
-    try {
-      return marker->contains("config_hash") && (*marker)["config_hash"] == expected_cell_hash(folder, job);
-    } catch (const std::runtime_error&) {
-      return false;  // its dataset is gone: the record cannot be checked
-    }
-  }
   const auto outcome = read_outcome(folder, job);
   return outcome && outcome->state == "ok" && outcome->inputs_hash == dataset_stage_inputs_hash(folder, job) &&
          outcome->marker_hash == marker_config_hash(marker);

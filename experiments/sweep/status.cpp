@@ -3,7 +3,9 @@
 #include <sys/stat.h>
 
 #include <ctime>
+#include <optional>
 
+#include "experiments/sweep/cell_record.hpp"
 #include "experiments/sweep/lock.hpp"
 
 namespace rapid {
@@ -21,10 +23,6 @@ double now_seconds() {
   timespec ts{};
   ::clock_gettime(CLOCK_REALTIME, &ts);
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-std::string text_field(const nlohmann::json& j, const char* key) {
-  return j.is_object() && j.contains(key) && j[key].is_string() ? j[key].get<std::string>() : "";
 }
 
 class Inspector {
@@ -58,37 +56,40 @@ class Inspector {
   JobStatus inspect(std::size_t i) const {
     const SweepJob& job = folder_.graph.jobs[i];
     if (running(job)) return {i, "running", ""};
-    const bool done = job_is_done(folder_, job);
-    if (done) return {i, "ok", ""};
-    const auto outcome = read_outcome(folder_, job);
-    const double outcome_time = mtime(file(job, sweep_files::kOutcome));
+    if (job.kind == JobKind::kCell) return inspect_cell(i);
+    if (job_is_done(folder_, job)) return {i, "ok", ""};
     const auto marker_path = folder_.path(job_marker_path(job));
-    const auto marker = read_json_file(marker_path);
-    const bool marker_exists = mtime(marker_path) >= 0;
+    if (const auto failed = failed_attempt(i)) return *failed;
+    if (mtime(marker_path) >= 0) return {i, "stale", "the grid changed since it ran (or it was built outside the sweep)"};
+    return waiting(i);
+  }
 
-    if (job.kind == JobKind::kCell && marker) {
-      std::string expected;
-      try {
-        expected = expected_cell_hash(folder_, job);
-      } catch (const std::exception& e) {
-        return {i, "stale", std::string(e.what()) + ", so the record cannot be checked"};
-      }
-      if (text_field(*marker, "config_hash") == expected) {
-        const std::string state = text_field(*marker, "status");
-        const std::string error = text_field(*marker, "error");
-        if (state == "diverged") return {i, "diverged", error};
-        return {i, "failed", error.empty() ? last_log_line(folder_, job) : error};
-      }
-    }
-    // No current record: the runner's note on the last attempt, if newer than any record.
-    if (outcome && (outcome->state == "failed" || outcome->state == "diverged") && outcome_time >= mtime(marker_path))
-      return {i, outcome->state, outcome->error.empty() ? last_log_line(folder_, job) : outcome->error};
-    if (job.kind == JobKind::kCell && marker_exists && !marker)
-      return {i, "failed", job_marker_path(job) + " is corrupt (not valid JSON)"};
-    if (marker_exists)
-      return {i, "stale", job.kind == JobKind::kCell ? "the grid or its dataset changed since it ran"
-                                                     : "the grid changed since it ran (or it was built outside the sweep)"};
-    for (std::size_t d : job.deps) {
+  // A cell, through the one judgement of its record that the runner and the reports share.
+  JobStatus inspect_cell(std::size_t i) const {
+    const SweepJob& job = folder_.graph.jobs[i];
+    const CellRecord r = read_cell_record(folder_, job);
+    if (r.done()) return {i, "ok", ""};
+    if (!r.hash_checked) return {i, "stale", "the dataset of " + job.id() + " is missing, so the record cannot be checked"};
+    if (r.status == "diverged") return {i, "diverged", r.error};
+    if (r.status == "failed") return {i, "failed", r.error.empty() ? last_log_line(folder_, job) : r.error};
+    if (const auto failed = failed_attempt(i)) return *failed;
+    if (r.status == "corrupt") return {i, "failed", job_marker_path(job) + " is corrupt: " + r.error};
+    if (r.status == "stale") return {i, "stale", "the grid or its dataset changed since it ran"};
+    return waiting(i);
+  }
+
+  // The runner's note on a last attempt that failed, if newer than any record.
+  std::optional<JobStatus> failed_attempt(std::size_t i) const {
+    const SweepJob& job = folder_.graph.jobs[i];
+    const auto outcome = read_outcome(folder_, job);
+    if (!outcome || (outcome->state != "failed" && outcome->state != "diverged")) return std::nullopt;
+    if (mtime(file(job, sweep_files::kOutcome)) < mtime(folder_.path(job_marker_path(job)))) return std::nullopt;
+    return JobStatus{i, outcome->state, outcome->error.empty() ? last_log_line(folder_, job) : outcome->error};
+  }
+
+  // No record and no failed attempt: blocked by a failed dependency, or pending.
+  JobStatus waiting(std::size_t i) const {
+    for (std::size_t d : folder_.graph.jobs[i].deps) {
       const std::string& dep_state = status_of(d);
       if (dep_state == "failed" || dep_state == "blocked" || dep_state == "diverged")
         return {i, "blocked", "needs " + folder_.graph.jobs[d].id() + ", which " +

@@ -12,7 +12,7 @@
 #include "core/dataset_stats.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
-
+#include "tests/datasets/raw_d4rl_writer.hpp"
 
 namespace rapid {
 namespace {
@@ -75,6 +75,54 @@ TEST_F(DatasetInfoCli, BadFilesExitTwoWithOneLine) {
     EXPECT_EQ(out.exit_code, 2) << out.text;
     EXPECT_THAT(out.text, StartsWith("rapid: error: dataset " + file + ": "));
     EXPECT_EQ(out.text.find('\n'), out.text.size() - 1) << "one line: " << out.text;
+  }
+}
+
+// `rapid run --dataset F` refuses every file that does not fit its scenario the way `rapid
+// dataset info` refuses a broken one: exit 2, one line naming the option and the file, and
+// nothing written into --out (no failed record).
+TEST(RunDatasetCli, AFileThatDoesNotFitIsBadInputAndNothingIsWritten) {
+  testing::ScratchDir dir;
+  // A pendulum-shaped dataset (obs_dim 3, act_dim 1) with actions inside [-1, 1].
+  Dataset fits = testing::make_dataset(3, 1, {20, 20});
+  fits.actions = fits.actions.cwiseMax(-1.0f).cwiseMin(1.0f);
+  fits.metadata[meta::kScenario] = "pendulum";
+  struct Case {
+    std::string file, message;
+  };
+  std::vector<Case> cases;
+  const auto raw = [&](const std::string& name, const std::vector<testing::KeyEdit>& edits, const std::string& message) {
+    testing::write_raw_d4rl(dir.file(name), fits, edits);
+    cases.push_back({name, message});
+  };
+  raw("nan.h5", {{.key = "observations", .nan_at = 4}}, "'observations' has a non-finite value");
+  raw("float64.h5", {{.key = "rewards", .file_type = H5T_IEEE_F64LE}}, "'rewards' is float64, expected float32");
+  raw("missing.h5", {{.key = "timeouts", .omit = true}}, "missing key 'timeouts'");
+  raw("lengths.h5", {{.key = "actions", .dims = {39, 1}}}, "'actions' has 39 rows, 'observations' has 40");
+  Dataset wide = fits;
+  wide.actions(0, 3) = 1.5f;
+  write_dataset(dir.file("wide.h5"), wide);
+  cases.push_back({"wide.h5", "actions must lie in [-1, 1]"});
+  Dataset obs = testing::make_dataset(4, 1, {20});
+  write_dataset(dir.file("obs.h5"), obs);
+  cases.push_back({"obs.h5", "'observations' has 4 columns, scenario pendulum expects 3"});
+  Dataset other = fits;
+  other.metadata[meta::kScenario] = "merge";
+  write_dataset(dir.file("other.h5"), other);
+  cases.push_back({"other.h5", "built for scenario 'merge', not 'pendulum'"});
+  std::filesystem::create_symlink(dir.file("loop.h5"), dir.file("loop.h5"));
+  cases.push_back({"loop.h5", "no dataset file at"});
+
+  const std::string out = dir.file("job");
+  for (const Case& c : cases) {
+    const test::CliOutput r = rapid_cli("run --scenario pendulum --algo rapid-rl --seed 0 --set steps=300 --dataset " +
+                                            dir.file(c.file) + " --out " + out,
+                                        /*with_stderr=*/true);
+    EXPECT_EQ(r.exit_code, 2) << c.file << "\n" << r.text;
+    EXPECT_THAT(r.text, StartsWith("rapid: error: --dataset: ")) << c.file;
+    EXPECT_THAT(r.text, HasSubstr(c.message)) << c.file;
+    EXPECT_EQ(r.text.find('\n'), r.text.size() - 1) << "one line: " << r.text;
+    EXPECT_FALSE(std::filesystem::exists(out)) << c.file;
   }
 }
 

@@ -99,6 +99,16 @@ TEST_F(ReportCliTest, DiffPassesOnAnIdenticalSweep) {
   EXPECT_NE(out.text.find("no differences in 5 cells"), std::string::npos) << out.text;
 }
 
+// --rtol inf accepts any finite difference, and certainly none: a cell whose std is 0 on both
+// sides (inf · 0 is NaN) must not "differ beyond rtol".
+TEST_F(ReportCliTest, DiffWithAnInfiniteRtolPassesOnAnIdenticalSweep) {
+  for (std::uint64_t seed : {0u, 1u, 2u}) run("", "ddpg", seed, 50.0);  // std 0
+  ASSERT_EQ(write_baseline().exit_code, 0);
+  const auto out = diff(" --rtol inf");
+  EXPECT_EQ(out.exit_code, 0) << out.text;
+  EXPECT_NE(out.text.find("no differences in 5 cells"), std::string::npos) << out.text;
+}
+
 TEST_F(ReportCliTest, DiffFailsOnAChangedValue) {
   ASSERT_EQ(write_baseline().exit_code, 0);
   run("initial", "rapid-rl", 1, 110.001);

@@ -79,7 +79,10 @@ TEST_F(SlurmTask, RunsItsJobWithTheLocalBookkeeping) {
 
 TEST_F(SlurmTask, AFailedJobIsRetriedRecordedShownByStatusAndResubmitted) {
   provide_datasets(sweep_, grid_path_);
-  std::ofstream(sweep_ / "datasets/pendulum/initial.h5", std::ios::trunc) << "not an HDF5 file";
+  // A job that fails as it ends (exit 1): its record cannot be written, since record.json is a
+  // folder. (A broken dataset would not do: `rapid run` refuses it as bad input, which is not
+  // retried.)
+  fs::create_directories(sweep_ / "jobs/pendulum/initial/rapid-rl/seed0/record.json/in-the-way");
   const std::string cells = submit();
   const Result r = task(cells, 0);
   EXPECT_EQ(r.exit_code, 1) << r.output;

@@ -163,6 +163,7 @@ void provide_datasets(const fs::path& sweep_dir, const fs::path& grid_path) {
   }
   for (const SweepJob& job : folder.graph.jobs)
     if (job.kind != JobKind::kCell) mark_dataset_stage_done(folder, job, 1);
+  write_json(sweep_dir / sweep_files::kGrid, folder.grid.normalized);  // a sweep folder, as `rapid sweep` leaves one
 }
 
 std::map<std::string, nlohmann::json> comparable_records(const fs::path& sweep_dir) {

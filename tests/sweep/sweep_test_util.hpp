@@ -45,7 +45,8 @@ bool process_running_in(const fs::path& dir);
 
 // Provides what `rapid dataset build` would: datasets/<scenario>/<name>.h5 for each dataset of
 // the grid (random-action pendulum rollouts), the reference record and build.json, and marks the
-// reference and dataset jobs done for this grid, so prior cells run without the build stage.
+// reference and dataset jobs done for this grid, so prior cells run without the build stage,
+// and the grid.json that makes the folder a sweep folder.
 void provide_datasets(const fs::path& sweep_dir, const fs::path& grid_path);
 
 // Every record.json under SWEEP/jobs, by job folder, without the fields that legitimately differ

@@ -89,6 +89,11 @@ TEST(Grid, EachMalformedGridNamesItsField) {
       {"max_retries negative", [](json& g) { g["max_retries"] = -1; }, "grid g.json: max_retries: expected a non-negative integer"},
       {"jobs zero", [](json& g) { g["jobs"] = 0; }, "grid g.json: jobs: expected a worker count"},
       {"not an object", [](json& g) { g = json::array(); }, "grid g.json: (top level): expected a JSON object"},
+      // Far beyond any study: refused before the runner would have to schedule it.
+      {"too many jobs", [](json& g) { g["seeds"] = json::array(); for (int i = 0; i < 10000; ++i) g["seeds"].push_back(i); },
+       "grid g.json: seeds: the grid expands to "},
+      {"name too long for a folder", [](json& g) { g["name"] = std::string(101, 'n'); },
+       "grid g.json: name: is 101 characters long; at most 100"},
   };
   for (const Case& c : cases) {
     json doc = valid_grid();
@@ -104,7 +109,7 @@ TEST(Grid, LoadReportsUnreadableAndInvalidJson) {
     load_grid("/nonexistent/grid.json");
     FAIL();
   } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "grid /nonexistent/grid.json: cannot read the file");
+    EXPECT_STREQ(e.what(), "grid /nonexistent/grid.json: no such file");
   }
 }
 

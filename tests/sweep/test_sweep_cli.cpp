@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <fstream>
 
+#include "tests/cli_runner.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
 #include "tests/sweep/sweep_test_util.hpp"
 
@@ -75,7 +76,7 @@ TEST(SweepCli, InvalidJsonMissingFileBadOptionsAndBadStatusFolder) {
   const std::string tail = " --out " + out.string();
   const std::vector<Case> cases = {
       {"sweep " + (dir.path() / "broken.json").string() + tail, "not valid JSON"},
-      {"sweep " + (dir.path() / "missing.json").string() + tail, "cannot read the file"},
+      {"sweep " + (dir.path() / "missing.json").string() + tail, "no such file"},
       {"sweep " + good.string() + " --backend pbs" + tail, "--backend: 'pbs' is not available; expected local or slurm"},
       {"sweep " + good.string() + " --only colour=red" + tail, "--only: unknown key 'colour'"},
       {"sweep " + good.string() + " --only algo=sac" + tail, "--only: algo 'sac' is not in the grid"},
@@ -94,6 +95,87 @@ TEST(SweepCli, InvalidJsonMissingFileBadOptionsAndBadStatusFolder) {
     EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << ": " << r.output;
     EXPECT_FALSE(fs::exists(out)) << c.args;
   }
+}
+
+// Grid files no grid would be, and --out values that are no folder: exit 2, one short line naming
+// what is wrong, nothing written. (Before: a segfault on deep nesting, a megabyte-long message,
+// reading /dev/zero forever, "unexpected end of input" for a folder, a duplicate key silently
+// taking the last value, a grid name too long for a file name failing after the lock, and
+// `--out ""` meaning results/<name>.)
+TEST(SweepCli, HostileGridFilesAndOutFoldersAreRefusedWithOneShortLine) {
+  testing::ScratchDir dir;
+  const fs::path out = dir.path() / "sweep";
+  const std::string good_text = pendulum_grid("g", {"ddpg"}, {0}, 1000).dump();
+  const auto grid_file = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir.path() / name) << text;
+    return (dir.path() / name).string();
+  };
+  // `{"description": [[[ … ]]], …}`: nesting far beyond any grid.
+  const std::string deep = grid_file("deep.json", "{\"description\": " + std::string(100000, '[') + std::string(100000, ']') +
+                                                      ", " + good_text.substr(1));
+  json long_value = json::parse(good_text);
+  long_value["description"] = json::array();
+  for (int i = 0; i < 20000; ++i) long_value["description"].push_back(i);
+  const std::string wide = grid_file("wide.json", long_value.dump());
+  const std::string duplicate = grid_file("duplicate.json", "{\"name\": \"h\", " + good_text.substr(1));
+  json long_name = json::parse(good_text);
+  long_name["name"] = std::string(300, 'n');
+  const std::string named = grid_file("named.json", long_name.dump());
+  const std::string good = grid_file("good.json", good_text);
+  std::ofstream(dir.path() / "a_file") << "mine";
+  struct Case {
+    std::string args, message;
+  };
+  const std::vector<Case> cases = {
+      {"sweep " + deep + " --out " + out.string(), "grid " + deep + ": nests deeper than 64 levels"},
+      {"sweep " + wide + " --out " + out.string(), "grid " + wide + ": description: expected a string, got [0,1,2,"},
+      {"sweep " + duplicate + " --out " + out.string(), "grid " + duplicate + ": duplicate key 'name'"},
+      {"sweep " + named + " --out " + out.string(), "grid " + named + ": name: is 300 characters long; at most 100"},
+      {"sweep /dev/zero --out " + out.string(), "grid /dev/zero: is larger than 1 MiB"},
+      {"sweep " + dir.path().string() + " --out " + out.string(), "grid " + dir.path().string() + ": is a directory"},
+      {"sweep " + good + " --out ''", "--out: must name a folder, got an empty path"},
+      {"sweep " + good + " --out " + (dir.path() / "a_file").string(), "--out: '" + (dir.path() / "a_file").string() + "' is not a folder"},
+      {"status " + (dir.path() / "a_file").string(), "SWEEP_DIR: '" + (dir.path() / "a_file").string() + "' is not a folder"},
+  };
+  for (const Case& c : cases) {
+    const test::CliOutput r = test::rapid_cli(c.args, /*with_stderr=*/true);
+    EXPECT_EQ(r.exit_code, 2) << c.args << ": " << r.text.substr(0, 500);
+    EXPECT_EQ(line_count(r.text), 1u) << c.args << ": " << r.text.substr(0, 500);
+    EXPECT_LT(r.text.size(), 400u) << c.args << ": " << r.text.substr(0, 500);
+    EXPECT_NE(r.text.find("rapid: error: " + c.message), std::string::npos) << c.args << ": " << r.text.substr(0, 500);
+    EXPECT_FALSE(fs::exists(out)) << c.args;
+    EXPECT_FALSE(fs::exists("results/g")) << c.args;
+  }
+}
+
+// A folder of the user's own is not overwritten: `sweep --out` and `summarize --out` refuse a
+// non-empty folder that is not a sweep (or reports) folder unless --force.
+TEST(SweepCli, AFolderThatHoldsTheUsersOwnFilesIsNotWrittenInto) {
+  testing::ScratchDir dir;
+  const fs::path mine = dir.path() / "mine";
+  fs::create_directories(mine);
+  std::ofstream(mine / "table.md") << "my notes";
+  const fs::path grid = dir.path() / "g.json";
+  write_json(grid, pendulum_grid("g", {"ddpg"}, {0}, 400));
+  Result r = run_rapid("sweep " + grid.string() + " --jobs 1 --out " + mine.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_EQ(line_count(r.output), 1u) << r.output;
+  EXPECT_NE(r.output.find("rapid: error: --out: '" + mine.string() + "' holds files but is not a sweep folder"),
+            std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(mine / "grid.json"));
+
+  const fs::path sweep = dir.path() / "sweep";
+  ASSERT_EQ(run_rapid("sweep " + grid.string() + " --jobs 1 --no-summary --out " + sweep.string()).exit_code, 0);
+  r = run_rapid("summarize " + sweep.string() + " --no-plots --out " + mine.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("rapid: error: --out: '" + mine.string() + "' holds files but is not a reports or sweep folder"),
+            std::string::npos) << r.output;
+  std::ifstream in(mine / "table.md");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "my notes");
+  // Written into on purpose; and a reports folder can be refreshed without --force.
+  ASSERT_EQ(run_rapid("summarize " + sweep.string() + " --no-plots --force --out " + mine.string()).exit_code, 0);
+  EXPECT_EQ(run_rapid("summarize " + sweep.string() + " --no-plots --out " + mine.string()).exit_code, 0);
 }
 
 }  // namespace

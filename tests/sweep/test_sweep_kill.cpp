@@ -132,3 +132,71 @@ TEST_F(KillSweep, ASecondSweepOnTheFolderIsRefusedAndCtrlCStopsCleanly) {
 
 }  // namespace
 }  // namespace rapid
+
+namespace rapid {
+namespace {
+
+using namespace sweep_test;
+using nlohmann::json;
+
+// The end of a sweep (and `rapid summarize`) draws the figures through an interpreter; this one
+// stands in for it: it answers "import matplotlib", and as scripts/plot it runs `plot_body`.
+class FakePlot : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    write_json(grid_path_, pendulum_grid("reports", {"ddpg"}, {0}, 600));
+    const Result done = run_rapid("sweep " + grid_path_.string() + " --jobs 1 --no-summary --out " + sweep_.string());
+    ASSERT_EQ(done.exit_code, 0) << done.output;
+  }
+  void TearDown() override { ::unsetenv("RAPID_PYTHON"); }
+  void use_python(const std::string& plot_body) {
+    std::ofstream(python_) << "#!/bin/sh\nif [ \"$1\" = -c ]; then exit 0; fi\n" << plot_body << "\n";
+    fs::permissions(python_, fs::perms::owner_all);
+    ::setenv("RAPID_PYTHON", python_.c_str(), 1);
+  }
+  pid_t plot_pid() const {
+    std::ifstream in(pid_file_);
+    pid_t pid = -1;
+    in >> pid;
+    return pid;
+  }
+
+  testing::ScratchDir dir_;
+  fs::path grid_path_ = dir_.path() / "reports.json";
+  fs::path sweep_ = dir_.path() / "sweep";
+  fs::path python_ = dir_.path() / "python";
+  fs::path pid_file_ = dir_.path() / "plot.pid";
+};
+
+// A stop signal while the reports are drawn: exit 130 (not death by the signal), and the plot
+// process is stopped with rapid instead of left running.
+TEST_F(FakePlot, ASignalWhileTheFiguresAreDrawnExits130AndStopsThePlot) {
+  use_python("echo $$ > " + pid_file_.string() + ".tmp && mv " + pid_file_.string() + ".tmp " + pid_file_.string() +
+             "\nexec sleep 600");
+  const std::string sweep_args = "sweep " + grid_path_.string() + " --jobs 1 --out " + sweep_.string();
+  const std::string summarize_args = "summarize " + sweep_.string();
+  for (const auto& [args, sig] : std::vector<std::pair<std::string, int>>{
+           {sweep_args, SIGTERM}, {sweep_args, SIGHUP}, {sweep_args, SIGINT}, {summarize_args, SIGTERM}}) {
+    fs::remove(pid_file_);
+    const fs::path log = dir_.path() / "rapid.log";
+    const pid_t rapid = spawn_rapid(args, log);
+    ASSERT_TRUE(wait_until([&] { return plot_pid() > 0; })) << args;
+    const pid_t plot = plot_pid();
+    ASSERT_EQ(::kill(rapid, sig), 0);
+    EXPECT_EQ(wait_exit(rapid), 130) << args << " " << sig;
+    const bool plot_alive = ::kill(plot, 0) == 0;
+    EXPECT_FALSE(plot_alive) << args << " " << sig << ": scripts/plot left running";
+    if (plot_alive) ::kill(plot, SIGKILL);
+  }
+}
+
+// A plot process that dies by a signal is named as such, and the sweep that ran it fails.
+TEST_F(FakePlot, AKilledPlotProcessFailsTheSweepAndSaysHow) {
+  use_python("kill -9 $$");
+  const Result r = run_rapid("sweep " + grid_path_.string() + " --jobs 1 --out " + sweep_.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("scripts/plot was killed by SIGKILL"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace rapid

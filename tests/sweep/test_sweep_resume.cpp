@@ -62,6 +62,38 @@ TEST_F(SmallSweep, CompletesAndARerunRunsNothing) {
   EXPECT_EQ(status()["counts"]["ok"], 6);
 }
 
+// A record that the reports call corrupt is not done for the runner or `rapid status` either, so
+// rerunning the sweep repairs it (one judgement of a record: sweep/cell_record.hpp).
+TEST_F(SmallSweep, ACorruptRecordIsNotDoneAndARerunRepairsIt) {
+  ASSERT_EQ(sweep().exit_code, 0);
+  const fs::path nan_final = sweep_ / "jobs/pendulum/none/ddpg/seed0/record.json";
+  const fs::path foreign = sweep_ / "jobs/pendulum/none/ddpg/seed1/record.json";
+  const fs::path other_cell = sweep_ / "jobs/pendulum/initial/rapid-rl/seed0/record.json";
+  json r = read_json(nan_final);
+  r["final"]["return_mean"] = "NaN";
+  write_json(nan_final, r);
+  r = read_json(foreign);
+  r["schema"] = "someone.else/7";
+  write_json(foreign, r);
+  r = read_json(other_cell);
+  r["cell"]["seed"] = 1;  // the hash still matches: only the cell says it is another one
+  write_json(other_cell, r);
+
+  const json s = status();
+  EXPECT_EQ(s["counts"]["ok"], 3) << s.dump();  // the dataset stage and rapid-rl/seed1
+  EXPECT_EQ(s["counts"]["failed"], 3) << s.dump();
+  for (const json& job : s["jobs"])
+    if (job["state"] == "failed")
+      EXPECT_NE(job["detail"].get<std::string>().find("is corrupt"), std::string::npos) << job.dump();
+
+  const Result rerun = sweep();
+  ASSERT_EQ(rerun.exit_code, 0) << rerun.output;
+  EXPECT_EQ(jobs_ran(sweep_), (std::vector<std::string>{"pendulum/initial/rapid-rl/seed0", "pendulum/none/ddpg/seed0",
+                                                       "pendulum/none/ddpg/seed1"}));
+  EXPECT_EQ(status()["counts"]["ok"], 6);
+  EXPECT_EQ(read_json(nan_final)["final"]["return_mean"].is_number(), true);
+}
+
 TEST_F(SmallSweep, OnlyWithForceRerunsExactlyTheSelectedJobs) {
   ASSERT_EQ(sweep().exit_code, 0);
   auto before = record_identities(sweep_);
@@ -127,7 +159,8 @@ TEST_F(SmallSweep, AGridChangeRerunsExactlyTheJobsItTouches) {
 }
 
 TEST_F(SmallSweep, StatusCountsStatesAndShowsTheFailedJobsError) {
-  // A corrupt dataset makes its cells fail inside `rapid run` (record written, exit 1).
+  // A corrupt dataset makes its cells fail: `rapid run` refuses it (exit 2, nothing written), so
+  // the sweep does not retry it.
   grid_["datasets"] = {"initial", "medium"};
   grid_["seeds"] = {0};
   grid_["max_retries"] = 1;
@@ -139,10 +172,11 @@ TEST_F(SmallSweep, StatusCountsStatesAndShowsTheFailedJobsError) {
   EXPECT_EQ(r.exit_code, 1) << r.output;
   const json manifest = read_json(sweep_ / "sweep.json");
   EXPECT_EQ(manifest["status"], "failed");
-  EXPECT_EQ(manifest["retries"], 1) << "the failed job is retried max_retries times";
+  EXPECT_EQ(manifest["retries"], 0) << "bad input is not retried";
   ASSERT_EQ(manifest["failures"].size(), 1u);
   EXPECT_EQ(manifest["failures"][0]["job"], "pendulum/medium/rapid-rl/seed0");
-  EXPECT_EQ(read_json(sweep_ / "jobs/pendulum/medium/rapid-rl/seed0/outcome.json")["attempts"], 2);
+  EXPECT_EQ(read_json(sweep_ / "jobs/pendulum/medium/rapid-rl/seed0/outcome.json")["attempts"], 1);
+  EXPECT_FALSE(fs::exists(sweep_ / "jobs/pendulum/medium/rapid-rl/seed0/record.json"));
 
   // One more seed in the folder's grid: its cells are pending.
   json folder_grid = read_json(sweep_ / "grid.json");
