@@ -146,7 +146,8 @@ TEST_F(SlurmCluster, AFailedReferenceStopsOnlyItsScenarioUntilTheNextSubmission)
   // A file where the pendulum's dataset folder belongs: its reference agent cannot be saved.
   fs::create_directories(sweep / "datasets");
   std::ofstream(sweep / "datasets/pendulum") << "in the way";
-  const Result first = submit_and_wait(grid, sweep);
+  // The folder now holds a file but no grid.json: --force lets the sweep write into it.
+  const Result first = submit_and_wait(grid, sweep, "--force");
   // Per scenario: references, datasets, the rapid-rl cell after them, the ddpg cell on its own.
   ASSERT_EQ(submitted_ids(first.output).size(), 8u) << first.output;
 
