@@ -53,7 +53,9 @@ BudgetRuleResult apply_budget_rule(const std::vector<ReferenceCurve>& curves, co
   if (!(gap > 0.0))
     throw std::invalid_argument("the reference's plateau (" + std::to_string(r.plateau) +
                                 ") is not above its untrained return (" + std::to_string(r.r0) + "): it did not learn");
-  r.plateaued = std::abs(r.third_quarter - r.plateau) <= o.plateau_tolerance * gap;
+  r.plateau_band = o.plateau_tolerance * gap;
+  r.plateaued = std::abs(r.third_quarter - r.plateau) <= r.plateau_band;
+  r.fraction = o.fraction;
   r.threshold = r.r0 + o.fraction * gap;
   for (std::size_t i = 0; i < n; ++i)
     if (r.smoothed[i] >= r.threshold) {
@@ -111,12 +113,12 @@ std::string budget_rule_report(const std::string& scenario, const std::vector<Re
       << (r.steps.size() > 1 ? r.steps[1] - r.steps[0] : 0) << "\n";
   out << "  R0 = " << r.r0 << "  P = " << r.plateau << "  third quarter = " << r.third_quarter << "\n";
   out << "  plateau check: |" << r.third_quarter << " - " << r.plateau << "| "
-      << (r.plateaued ? "<= " : "> ") << 0.1 * (r.plateau - r.r0) << (r.plateaued ? "  passed" : "  FAILED") << "\n";
+      << (r.plateaued ? "<= " : "> ") << r.plateau_band << (r.plateaued ? "  passed" : "  FAILED") << "\n";
   if (!r.plateaued) {
     out << "  the reference has not plateaued: train it for L = " << 2 * r.long_run << " and apply the rule again\n";
     return out.str();
   }
-  out << "  threshold R0 + 0.6 (P - R0) = " << r.threshold << "\n";
+  out << "  threshold R0 + " << r.fraction << " (P - R0) = " << r.threshold << "\n";
   if (r.budget < 0) {
     out << "  s(t) never reaches the threshold: no budget\n";
     return out.str();

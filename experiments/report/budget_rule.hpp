@@ -31,6 +31,8 @@ struct BudgetRuleResult {
   double plateau = 0.0;         // P: mean of c over t ≥ 3L/4
   double third_quarter = 0.0;   // mean of c over L/2 ≤ t < 3L/4
   bool plateaued = false;       // the plateau check passed
+  double plateau_band = 0.0;    // plateau_tolerance · (P − R0): how far the third quarter may lie from P
+  double fraction = 0.0;        // the options' fraction, for the report
   double threshold = 0.0;       // R0 + fraction · (P − R0)
   long budget = -1;             // T; −1 when s(t) never reaches the threshold
   long long_run = 0;            // L

@@ -36,10 +36,7 @@ std::string SweepJob::id() const {
 JobGraph build_job_graph(const Grid& grid) {
   JobGraph graph;
   std::map<std::string, std::size_t> dataset_job_of;  // scenario → its dataset job
-  bool any_prior = false;
-  for (const auto& algo : grid.algos) any_prior = any_prior || find_algorithm(algo).uses_prior;
-
-  if (any_prior) {
+  if (grid_uses_prior(grid)) {
     for (const auto& scenario : grid.scenarios) {
       SweepJob ref;
       ref.kind = JobKind::kReference;

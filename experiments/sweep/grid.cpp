@@ -249,9 +249,7 @@ Grid parse_grid(const json& doc, const std::string& label) {
   check.job_count(grid);
   grid.config = check.object_or_empty(doc, "config");
   grid.scenario_config = check.object_or_empty(doc, "scenario_config");
-  bool any_prior = false;
-  for (const auto& algo : grid.algos) any_prior = any_prior || find_algorithm(algo).uses_prior;
-  grid.reference = parse_reference(check, check.object_or_empty(doc, "reference"), grid.seeds, any_prior);
+  grid.reference = parse_reference(check, check.object_or_empty(doc, "reference"), grid.seeds, grid_uses_prior(grid));
   if (doc.contains("max_retries")) {
     const std::uint64_t r = check.non_negative_integer(doc["max_retries"], "max_retries");
     if (r > 100) check.fail("max_retries", "at most 100, got " + std::to_string(r));
@@ -315,6 +313,11 @@ std::vector<std::string> grid_differences(const json& before, const json& after)
   std::vector<std::string> out;
   collect_differences(before, after, "", out);
   return out;
+}
+
+bool grid_uses_prior(const Grid& grid) {
+  return std::any_of(grid.algos.begin(), grid.algos.end(),
+                     [](const std::string& algo) { return find_algorithm(algo).uses_prior; });
 }
 
 ReferenceSettings reference_for(const Grid& grid, const std::string& scenario) {

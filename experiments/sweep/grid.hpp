@@ -67,6 +67,10 @@ Grid parse_grid(const nlohmann::json& document, const std::string& label);
 // The overrides a cell of `scenario` gets: "config", then "scenario_config"[scenario] on top.
 nlohmann::json grid_overrides(const Grid& grid, const std::string& scenario);
 
+// Whether an algorithm of the grid uses prior data: then each scenario has a reference agent and
+// a dataset build.
+bool grid_uses_prior(const Grid& grid);
+
 // The reference settings of `scenario`'s dataset build.
 ReferenceSettings reference_for(const Grid& grid, const std::string& scenario);
 
