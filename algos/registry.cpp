@@ -1,5 +1,6 @@
 #include "algos/registry.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "algos/col_all.hpp"
@@ -17,15 +18,26 @@ std::unique_ptr<ActorCritic> make(int obs_dim, int act_dim, const AgentConfig& c
 
 const std::vector<Algorithm>& algorithms() {
   static const std::vector<Algorithm> table = {
-      // name       display      prior  the actor loss's imitation weights
-      {"rapid-rl", "RAPID-RL", true, make<RapidRl>},
+      // name       display      prior  the actor loss's imitation weights  own keys
+      {"rapid-rl", "RAPID-RL", true, make<RapidRl>, {"epsilon"}},
       // RLPD as the paper uses it: the backbone on symmetric batches, no imitation term.
-      {"rlpd", "RLPD", true, make<ActorCritic>},
-      {"col-prior", "CoL-prior", true, make<ColPrior>},
-      {"col-all", "CoL-all", true, make<ColAll>},
-      {"ddpg", "DDPG", false, make<ActorCritic>},
+      {"rlpd", "RLPD", true, make<ActorCritic>, {}},
+      {"col-prior", "CoL-prior", true, make<ColPrior>, {"lambda_bc"}},
+      {"col-all", "CoL-all", true, make<ColAll>, {"lambda_bc"}},
+      {"ddpg", "DDPG", false, make<ActorCritic>, {}},
   };
   return table;
+}
+
+bool Algorithm::reads(const std::string& key) const {
+  if (std::find(own_keys.begin(), own_keys.end(), key) != own_keys.end()) return true;
+  return !is_algorithm_key(key);
+}
+
+bool is_algorithm_key(const std::string& key) {
+  for (const Algorithm& a : algorithms())
+    if (std::find(a.own_keys.begin(), a.own_keys.end(), key) != a.own_keys.end()) return true;
+  return false;
 }
 
 std::vector<std::string> algo_names() {

@@ -19,11 +19,21 @@ struct Algorithm {
   bool uses_prior = false;
   std::unique_ptr<ActorCritic> (*make)(int obs_dim, int act_dim, const AgentConfig& config,
                                        std::uint64_t init_seed) = nullptr;
+  // The algorithm-specific config keys it reads (ε, λ_BC, …). A key some algorithm lists here is
+  // read by those algorithms only; every other key is read by all of them. Sweeps rely on it: a
+  // grid axis over such a key does not duplicate the jobs of the algorithms that ignore it
+  // (tests/algos/test_registry.cpp checks that changing the key leaves their updates unchanged).
+  std::vector<std::string> own_keys;
+
+  bool reads(const std::string& key) const;
 };
 
 // In the order of the paper's Table I columns.
 const std::vector<Algorithm>& algorithms();
 std::vector<std::string> algo_names();
+
+// Whether some algorithm lists `key` among its own keys (then the others ignore it).
+bool is_algorithm_key(const std::string& key);
 
 // Throws std::invalid_argument("unknown algorithm '…'; expected one of …").
 const Algorithm& find_algorithm(const std::string& name);

@@ -2,6 +2,8 @@
 // imitation term, and the critic target's terminal/timeout handling.
 #include <gtest/gtest.h>
 
+#include <functional>
+
 #include "algos/registry.hpp"
 #include "tests/finite_difference.hpp"
 
@@ -139,6 +141,34 @@ TEST(Registry, RowsInThePapersColumnOrderWithPriorUseAndUnknownNames) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("unknown algorithm 'sac'"), std::string::npos);
   }
+}
+
+// A key an algorithm does not list among its own keys must not change what it computes: sweeps
+// share its jobs across the values of an axis over that key (docs/sweeps.md §Axes).
+TEST(Registry, AlgorithmsIgnoreTheKeysOfOtherAlgorithms) {
+  // Each algorithm-specific key with the AgentConfig field it sets and two values far apart.
+  const std::vector<std::pair<std::string, std::function<void(AgentConfig&, float)>>> keys = {
+      {"epsilon", [](AgentConfig& c, float x) { c.epsilon = x; }},
+      {"lambda_bc", [](AgentConfig& c, float x) { c.lambda_bc = x; }},
+  };
+  for (const auto& [key, set] : keys) EXPECT_TRUE(is_algorithm_key(key)) << key;
+  const Batch batch = hand_made_batch();
+  for (const Algorithm& algo : algorithms())
+    for (const auto& [key, set] : keys) {
+      AgentConfig low = small_config(), high = small_config();
+      set(low, 0.01f);
+      set(high, 5.0f);
+      auto a = algo.make(kObs, kAct, low, 17), b = algo.make(kObs, kAct, high, 17);
+      const float la = a->compute_actor_gradient(batch), lb = b->compute_actor_gradient(batch);
+      if (algo.reads(key)) {
+        EXPECT_NE(la, lb) << algo.name << " lists " << key << " but ignores it";
+      } else {
+        EXPECT_EQ(la, lb) << algo.name << " reads " << key;
+        EXPECT_EQ(a->actor().grads(), b->actor().grads()) << algo.name << " reads " << key;
+      }
+    }
+  EXPECT_FALSE(is_algorithm_key("gamma"));
+  EXPECT_TRUE(find_algorithm("ddpg").reads("gamma"));
 }
 
 // A time-limit truncation is stored as not terminal (ReplayBuffer.SamplesOnlyStoredTransitionsUniformly
