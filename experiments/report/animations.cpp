@@ -26,7 +26,7 @@ std::string describe(const CellSummary& c) {
 const SweepJob* find_cell_job(const SweepFolder& folder, const CellSummary& c, std::uint64_t seed) {
   for (const SweepJob& job : folder.graph.jobs)
     if (job.kind == JobKind::kCell && job.scenario == c.scenario && job.dataset == c.dataset && job.algo == c.algo &&
-        job.seed == seed)
+        job.axis == c.axis && job.seed == seed)
       return &job;
   return nullptr;
 }

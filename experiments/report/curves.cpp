@@ -37,6 +37,19 @@ MeanCurve mean_eval_curve(const std::vector<const nlohmann::json*>& records) {
   return mean_curve(records, "eval", has_target ? "target_step" : "step", "return_mean");
 }
 
+std::vector<std::pair<double, double>> eval_points(const nlohmann::json& record) {
+  std::vector<std::pair<double, double>> out;
+  if (!record.contains("eval") || !record["eval"].is_array()) return out;
+  for (const nlohmann::json& point : record["eval"]) {
+    if (!point.is_object()) continue;
+    const char* x_key = point.contains("target_step") ? "target_step" : "step";
+    if (!point.contains(x_key) || !point.contains("return_mean")) continue;
+    const nlohmann::json &x = point[x_key], &y = point["return_mean"];
+    if (x.is_number() && y.is_number()) out.emplace_back(x.get<double>(), y.get<double>());
+  }
+  return out;
+}
+
 std::optional<double> normalized_area(const MeanCurve& curve) {
   if (curve.step.size() < 2) return std::nullopt;
   const double range = curve.step.back() - curve.step.front();

@@ -21,6 +21,9 @@ MeanCurve mean_curve(const std::vector<const nlohmann::json*>& records, const st
 // The evaluation curve's x: "target_step" where the records have it, else "step".
 MeanCurve mean_eval_curve(const std::vector<const nlohmann::json*>& records);
 
+// One run's evaluations as (x, return_mean), x as mean_eval_curve aligns them.
+std::vector<std::pair<double, double>> eval_points(const nlohmann::json& record);
+
 // Trapezoid area under the mean curve divided by its step range (a step-weighted average return);
 // nullopt with fewer than two points.
 std::optional<double> normalized_area(const MeanCurve& curve);

@@ -59,6 +59,7 @@ CellSummary summarize_cell(const SweepFolder& folder, const std::vector<const Sw
   cell.scenario = jobs.front()->scenario;
   cell.dataset = jobs.front()->dataset;
   cell.algo = jobs.front()->algo;
+  cell.axis = jobs.front()->axis;
   std::vector<nlohmann::json> records;
   for (const SweepJob* job : jobs) {
     LoadedRecord loaded = load_cell_record(folder, *job);
@@ -66,6 +67,7 @@ CellSummary summarize_cell(const SweepFolder& folder, const std::vector<const Sw
     cell.statuses[loaded.result.status] += 1;
     if (loaded.result.final_return) cell.finals.push_back(*loaded.result.final_return);
     if (loaded.record) {
+      loaded.result.eval = eval_points(*loaded.record);
       records.push_back(std::move(*loaded.record));
       const nlohmann::json& config = records.back().contains("config") ? records.back()["config"] : nlohmann::json();
       if (config.is_object() && config.contains("epsilon") && config["epsilon"].is_number() &&
@@ -86,26 +88,79 @@ CellSummary summarize_cell(const SweepFolder& folder, const std::vector<const Sw
   return cell;
 }
 
+// The part of `point` an algorithm reads: the point of its cell in a row at `point`.
+AxisPoint read_part(const AxisPoint& point, const Algorithm& algo) {
+  AxisPoint out;
+  for (const auto& entry : point)
+    if (algo.reads(entry.first)) out.push_back(entry);
+  return out;
+}
+
+// A table row per scenario × dataset × point of every axis some algorithm of the grid reads.
 void build_rows(Summary& s) {
+  const std::vector<std::string> algos = ordered_algos(s.grid);
+  const auto any_reads = [&](const std::string& key) {
+    return std::any_of(algos.begin(), algos.end(), [&](const std::string& a) { return find_algorithm(a).reads(key); });
+  };
   for (const std::string& scenario : s.grid.scenarios)
-    for (const std::string& dataset : ordered_datasets(s.grid)) {
-      TableRow row;
-      row.scenario = scenario;
-      row.dataset = dataset;
-      double best = -INFINITY;
-      for (const std::string& algo : ordered_algos(s.grid)) {
-        const std::string cell_dataset = find_algorithm(algo).uses_prior ? dataset : "";
-        for (std::size_t i = 0; i < s.cells.size(); ++i) {
-          const CellSummary& c = s.cells[i];
-          if (c.scenario != scenario || c.dataset != cell_dataset || c.algo != algo) continue;
-          row.cells.emplace_back(algo, i);
-          if (c.mean && *c.mean > best) {
-            best = *c.mean;
-            row.best = algo;
+    for (const std::string& dataset : ordered_datasets(s.grid))
+      for (const AxisPoint& point : axis_points(s.grid, scenario, any_reads)) {
+        TableRow row;
+        row.scenario = scenario;
+        row.dataset = dataset;
+        row.axis = point;
+        double best = -INFINITY;
+        for (const std::string& algo : algos) {
+          const Algorithm& a = find_algorithm(algo);
+          const std::string cell_dataset = a.uses_prior ? dataset : "";
+          const AxisPoint cell_point = read_part(point, a);
+          for (std::size_t i = 0; i < s.cells.size(); ++i) {
+            const CellSummary& c = s.cells[i];
+            if (c.scenario != scenario || c.dataset != cell_dataset || c.algo != algo || c.axis != cell_point) continue;
+            row.cells.emplace_back(algo, i);
+            if (c.mean && *c.mean > best) {
+              best = *c.mean;
+              row.best = algo;
+            }
           }
         }
+        s.rows.push_back(std::move(row));
       }
-      s.rows.push_back(std::move(row));
+}
+
+// Per axis: the rows that differ only in that axis's value, read as one line per algorithm.
+void build_sensitivity(Summary& s) {
+  for (const GridAxis& axis : s.grid.axes)
+    for (const TableRow& row : s.rows) {
+      // Start a line at the rows holding the axis's first value; the others are found from there.
+      const auto at = std::find_if(row.axis.begin(), row.axis.end(), [&](const auto& e) { return e.first == axis.key; });
+      if (at == row.axis.end()) continue;
+      const std::vector<nlohmann::json>& values = axis.values.at(row.scenario);
+      if (at->second != values.front()) continue;
+      AxisPoint others = row.axis;
+      others.erase(others.begin() + (at - row.axis.begin()));
+      for (const auto& [algo, first_index] : row.cells) {
+        SensitivityLine line;
+        line.axis = axis.key;
+        line.scenario = row.scenario;
+        line.dataset = row.dataset;
+        line.algo = algo;
+        line.others = others;
+        line.reads = find_algorithm(algo).reads(axis.key);
+        line.values = values;
+        for (const nlohmann::json& value : values) {
+          AxisPoint point = row.axis;
+          point[at - row.axis.begin()].second = value;
+          const auto r = std::find_if(s.rows.begin(), s.rows.end(), [&](const TableRow& o) {
+            return o.scenario == row.scenario && o.dataset == row.dataset && o.axis == point;
+          });
+          const CellSummary* c = r == s.rows.end() ? nullptr : s.column_cell(*r, algo);
+          line.mean.push_back(c ? c->mean : std::nullopt);
+          line.ci.push_back(c ? c->mean_ci : std::nullopt);
+          line.n_ok.push_back(c ? c->n_ok : 0);
+        }
+        s.sensitivity.push_back(std::move(line));
+      }
     }
 }
 
@@ -119,6 +174,7 @@ void build_poi(Summary& s) {
       PoiEntry e;
       e.scenario = row.scenario;
       e.dataset = row.dataset;
+      e.point = point_label(row.axis);
       e.baseline = algo;
       e.n_x = ours->n_ok;
       e.n_y = theirs.n_ok;
@@ -127,7 +183,8 @@ void build_poi(Summary& s) {
         const Strata two = {ours->finals, theirs.finals};
         e.ci = stratified_bootstrap_ci(
             two, [](const Strata& st) { return probability_of_improvement(st[0], st[1]); },
-            bootstrap_options(s.bootstrap, s.bootstrap.poi_replicates, row.scenario + "/" + row.dataset + "/poi/" + algo));
+            bootstrap_options(s.bootstrap, s.bootstrap.poi_replicates,
+                              row.scenario + "/" + row.dataset + "/poi/" + algo + (e.point.empty() ? "" : "/" + e.point)));
       }
       s.poi.push_back(e);
     }
@@ -137,6 +194,7 @@ void build_poi(Summary& s) {
 // IQM of all ok runs of an algorithm across its cells, resampled within cells. Returns are not
 // normalised across scenarios: read it next to the per-cell values, not as a score.
 void build_aggregate(Summary& s) {
+  if (!s.grid.axes.empty()) return;  // it would pool the values of the axes
   for (const std::string& algo : ordered_algos(s.grid)) {
     Strata strata;
     for (const CellSummary& c : s.cells)
@@ -167,7 +225,8 @@ Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptio
   for (const SweepJob& job : folder.graph.jobs) {
     if (job.kind != JobKind::kCell) continue;
     const SweepJob* last = groups.empty() ? nullptr : groups.back().front();
-    if (last && last->scenario == job.scenario && last->dataset == job.dataset && last->algo == job.algo)
+    if (last && last->scenario == job.scenario && last->dataset == job.dataset && last->algo == job.algo &&
+        last->axis == job.axis)
       groups.back().push_back(&job);
     else
       groups.push_back({&job});
@@ -202,6 +261,7 @@ Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptio
   build_rows(s);
   build_poi(s);
   build_aggregate(s);
+  build_sensitivity(s);
   if (options.dataset_stats) {
     s.datasets = summarize_datasets(folder);
     for (const std::string& scenario : s.grid.scenarios) {

@@ -3,12 +3,12 @@
 namespace rapid {
 
 std::string CellSummary::key() const {
-  return scenario + "/" + (dataset.empty() ? "none" : dataset) + "/" + algo;
+  return scenario + "/" + (dataset.empty() ? "none" : dataset) + "/" + algo + (axis.empty() ? "" : "/" + point_label(axis));
 }
 
 const CellSummary* Summary::find(const std::string& scenario, const std::string& dataset, const std::string& algo) const {
   for (const CellSummary& c : cells)
-    if (c.scenario == scenario && c.dataset == dataset && c.algo == algo) return &c;
+    if (c.scenario == scenario && c.dataset == dataset && c.algo == algo && c.axis.empty()) return &c;
   return nullptr;
 }
 

@@ -4,8 +4,9 @@
 // Everything the reports, `rapid diff` and scripts/plot need, so none of them reads records on its
 // own.
 //
-// Cells are keyed as the job graph has them: (scenario, dataset, algo) with an empty dataset for
-// ddpg, whose one cell per scenario appears in every dataset row of the table (as in the paper).
+// Cells are keyed as the job graph has them: (scenario, dataset, algo, axis point) with an empty
+// dataset for ddpg, whose one cell per scenario appears in every dataset row of the table (as in
+// the paper); likewise a cell that does not read an axis appears in the row of every value.
 #pragma once
 
 #include <cstdint>
@@ -30,6 +31,8 @@ struct SeedResult {
   std::string status;
   std::optional<double> final_return;  // final.return_mean of an ok record
   std::string error;                   // one line for anything but ok
+  // Every evaluation of an ok record: (step, return_mean), the x of Figure 2; for runs.csv.
+  std::vector<std::pair<double, double>> eval;
 };
 
 // A curve averaged over the ok seeds at each step; n = how many seeds had a point there.
@@ -41,6 +44,7 @@ struct MeanCurve {
 
 struct CellSummary {
   std::string scenario, dataset, algo;  // dataset empty for ddpg
+  AxisPoint axis;                       // the axis values the cell runs at (empty without axes)
   std::vector<SeedResult> seeds;        // one per grid seed, in grid order
   int n_ok = 0;
   int n_expected = 0;
@@ -51,18 +55,20 @@ struct CellSummary {
   MeanCurve eval;                       // return_mean over target_step
   MeanCurve bc_prior, bc_online;        // rapid-rl and other prior algorithms; prior empty without one
   std::optional<double> eval_auc;       // area under the mean eval curve / step range
-  std::string key() const;              // "merge/initial/rapid-rl", "merge/none/ddpg"
+  std::string key() const;              // "merge/initial/rapid-rl", "merge/none/ddpg", "merge/initial/rapid-rl/epsilon=0.3"
 };
 
 // One row of Table I: a scenario × dataset and the cell index of each algorithm column.
 struct TableRow {
   std::string scenario, dataset;
+  AxisPoint axis;  // every axis varied in the scenario; a column shows the cell at the part its algorithm reads
   std::vector<std::pair<std::string, std::size_t>> cells;  // (algo, index into Summary::cells)
   std::optional<std::string> best;  // the algorithm with the highest mean (ties: the first column)
 };
 
 struct PoiEntry {
   std::string scenario, dataset, baseline;
+  std::string point;  // the row's axis point label
   double p = 0.0;
   std::optional<Interval> ci;
   int n_x = 0, n_y = 0;
@@ -92,6 +98,19 @@ struct ClaimResult {
   std::vector<std::vector<std::string>> rows;
 };
 
+// One line of a sensitivity figure: an algorithm's final return along one axis, the other axes
+// held at `others`. An algorithm that does not read the axis has the same cell at every value
+// (reads false: drawn flat, for reference).
+struct SensitivityLine {
+  std::string axis, scenario, dataset, algo;
+  AxisPoint others;
+  bool reads = true;
+  std::vector<nlohmann::json> values;          // the axis values, in the grid's order
+  std::vector<std::optional<double>> mean;     // per value: mean final return over the ok seeds
+  std::vector<std::optional<Interval>> ci;     // its 95% interval
+  std::vector<int> n_ok;
+};
+
 struct BootstrapSettings {
   int cell_replicates = 10000;
   int aggregate_replicates = 50000;
@@ -107,7 +126,8 @@ struct Summary {
   std::vector<CellSummary> cells;  // ordered by scenario, dataset, algorithm (table order)
   std::vector<TableRow> rows;
   std::vector<PoiEntry> poi;       // P(rapid-rl > baseline) per row
-  std::vector<AggregateEntry> aggregate;
+  std::vector<AggregateEntry> aggregate;  // grids without axes only (it would pool axis values)
+  std::vector<SensitivityLine> sensitivity;  // grids with axes
   std::map<std::string, double> epsilon;  // per scenario
   std::map<std::string, nlohmann::json> reference;  // per scenario: the reference agent's final result
   std::vector<DatasetSummary> datasets;

@@ -11,6 +11,13 @@ namespace {
 
 nlohmann::json dataset_name(const std::string& d) { return d.empty() ? nlohmann::json(nullptr) : nlohmann::json(d); }
 
+// {"epsilon": 0.3, …}: a point as an object of its axis values.
+nlohmann::json point_json(const AxisPoint& point) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [key, value] : point) out[key] = value;
+  return out;
+}
+
 nlohmann::json curve_json(const MeanCurve& c) {
   return {{"step", c.step}, {"mean", c.mean}, {"std", c.std}, {"n", c.n}};
 }
@@ -20,7 +27,7 @@ nlohmann::json cell_json(const CellSummary& c) {
   for (const SeedResult& r : c.seeds)
     seeds.push_back({{"seed", r.seed}, {"status", r.status}, {"final", json_number(r.final_return)},
                      {"error", r.error.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.error)}});
-  return {{"scenario", c.scenario},
+  nlohmann::json j = {{"scenario", c.scenario},
           {"dataset", dataset_name(c.dataset)},
           {"algo", c.algo},
           {"n_ok", c.n_ok},
@@ -37,6 +44,18 @@ nlohmann::json cell_json(const CellSummary& c) {
           {"eval_curve", curve_json(c.eval)},
           {"bc_prior_curve", curve_json(c.bc_prior)},
           {"bc_online_curve", curve_json(c.bc_online)}};
+  if (!c.axis.empty()) j["axis"] = point_json(c.axis);  // absent without axes: older summaries stay as they were
+  return j;
+}
+
+nlohmann::json sensitivity_json(const SensitivityLine& l) {
+  nlohmann::json ci = nlohmann::json::array();
+  for (const auto& i : l.ci) ci.push_back(json_interval(i));
+  nlohmann::json mean = nlohmann::json::array();
+  for (const auto& m : l.mean) mean.push_back(json_number(m));
+  return {{"axis", l.axis},     {"scenario", l.scenario}, {"dataset", l.dataset}, {"algo", l.algo},
+          {"others", point_json(l.others)}, {"reads", l.reads}, {"values", l.values},
+          {"mean", mean},       {"ci", ci},               {"n_ok", l.n_ok}};
 }
 
 nlohmann::json claim_json(const ClaimResult& c) {
@@ -52,6 +71,11 @@ nlohmann::json summary_to_json(const Summary& s) {
   j["schema"] = kSummarySchema;
   j["grid"] = {{"name", s.grid.name},   {"scenarios", s.grid.scenarios}, {"datasets", s.grid.datasets},
                {"algos", s.grid.algos}, {"seeds", s.grid.seeds}};
+  if (!s.grid.axes.empty()) {
+    nlohmann::json axes = nlohmann::json::object();
+    for (const GridAxis& axis : s.grid.axes) axes[axis.key] = axis.values;
+    j["grid"]["axes"] = axes;
+  }
   j["statistics"] = {{"std", "population (ddof=0) over the ok seeds"},
                      {"iqm", "scipy.stats.trim_mean(x, 0.25)"},
                      {"interval", "percentile, stratified bootstrap"},
@@ -74,6 +98,7 @@ nlohmann::json summary_to_json(const Summary& s) {
     for (const auto& [algo, index] : row.cells) columns.push_back({{"algo", algo}, {"cell", s.cells[index].key()}});
     j["table"].push_back({{"scenario", row.scenario}, {"dataset", row.dataset}, {"columns", columns},
                           {"best", row.best ? nlohmann::json(*row.best) : nlohmann::json(nullptr)}});
+    if (!row.axis.empty()) j["table"].back()["axis"] = point_json(row.axis);
   }
 
   j["probability_of_improvement"] = nlohmann::json::array();
@@ -81,6 +106,12 @@ nlohmann::json summary_to_json(const Summary& s) {
     j["probability_of_improvement"].push_back({{"scenario", p.scenario}, {"dataset", p.dataset}, {"algo", "rapid-rl"},
                                                {"baseline", p.baseline}, {"p", json_number(p.p)}, {"ci", json_interval(p.ci)},
                                                {"n_x", p.n_x}, {"n_y", p.n_y}});
+  for (std::size_t i = 0; i < s.poi.size(); ++i)
+    if (!s.poi[i].point.empty()) j["probability_of_improvement"][i]["point"] = s.poi[i].point;
+  if (!s.sensitivity.empty()) {
+    j["sensitivity"] = nlohmann::json::array();
+    for (const SensitivityLine& l : s.sensitivity) j["sensitivity"].push_back(sensitivity_json(l));
+  }
   j["aggregate_iqm"] = nlohmann::json::array();
   for (const AggregateEntry& a : s.aggregate)
     j["aggregate_iqm"].push_back({{"algo", a.algo}, {"iqm", a.iqm}, {"ci", {a.ci.lo, a.ci.hi}},

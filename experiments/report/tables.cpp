@@ -64,6 +64,73 @@ std::string latex_escape(const std::string& text) {
   return out;
 }
 
+// "epsilon = 0.3, lambda_bc = 10": a row's axis values.
+std::string point_text(const AxisPoint& point) {
+  std::string out;
+  for (const auto& [key, value] : point) out += (out.empty() ? "" : ", ") + key + " = " + axis_value_label(value);
+  return out;
+}
+
+// The value of `key` in `point` ("" when the point has no such axis), CSV-quoted if needed.
+std::string axis_text(const AxisPoint& point, const std::string& key) {
+  for (const auto& [k, value] : point)
+    if (k == key) {
+      const std::string text = axis_value_label(value);
+      return text.find(',') == std::string::npos ? text : "\"" + text + "\"";
+    }
+  return "";
+}
+
+// "`epsilon` over -0.5, -0.15 (all scenarios); …" for the table's preamble.
+std::string axes_sentence(const Grid& grid) {
+  std::string out;
+  for (const GridAxis& axis : grid.axes) {
+    out += (out.empty() ? "" : "; ") + std::string("`") + axis.key + "` over ";
+    std::string per;
+    for (const auto& [scenario, values] : axis.values) {
+      std::string list;
+      for (const auto& v : values) list += (list.empty() ? "" : ", ") + axis_value_label(v);
+      per += (per.empty() ? "" : "; ") + list + " (" + scenario + ")";
+    }
+    out += per;
+  }
+  return out + ".";
+}
+
+// The sensitivity section: per axis, scenario and dataset, each algorithm's mean and 95% interval
+// at every value of the axis.
+std::string sensitivity_markdown(const Summary& s, int decimals) {
+  std::ostringstream out;
+  out << "\n## Sensitivity\n\nMean final return at each axis value, 95% stratified-bootstrap interval in brackets; "
+         "the other axes held at the values named. An algorithm that does not read the axis shows the same cell "
+         "at every value (marked *flat*).\n";
+  std::string heading;
+  for (const SensitivityLine& line : s.sensitivity) {
+    const std::string h = "`" + line.axis + "` — " + scenario_display_name(line.scenario) + " / " +
+                          dataset_display_name(line.dataset) + (line.others.empty() ? "" : " (" + point_text(line.others) + ")");
+    if (h != heading) {
+      heading = h;
+      out << "\n### " << h << "\n\n| Algorithm |";
+      for (const auto& v : line.values) out << " " << line.axis << " = " << axis_value_label(v) << " |";
+      out << "\n|---|";
+      for (std::size_t i = 0; i < line.values.size(); ++i) out << "---:|";
+      out << "\n";
+    }
+    out << "| " << algo_display_name(line.algo) << (line.reads ? "" : " *flat*") << " |";
+    for (std::size_t i = 0; i < line.values.size(); ++i) {
+      if (!line.mean[i]) {
+        out << " — |";
+        continue;
+      }
+      out << " " << fixed(*line.mean[i], decimals);
+      if (line.ci[i]) out << " [" << fixed(line.ci[i]->lo, decimals) << ", " << fixed(line.ci[i]->hi, decimals) << "]";
+      out << " (n=" << line.n_ok[i] << ") |";
+    }
+    out << "\n";
+  }
+  return out.str();
+}
+
 }  // namespace
 
 std::string table_markdown(const Summary& s) {
@@ -76,13 +143,18 @@ std::string table_markdown(const Summary& s) {
          "scenario.\n\n"
       << "Jobs: " << total_expected(s) << " runs, " << status_line(s) << ".\n\n";
   const auto algos = columns(s);
-  out << "| Scenario | Dataset |";
+  const bool axes = !s.grid.axes.empty();
+  if (axes)
+    out << "Axes: " << axes_sentence(s.grid) << " A column shows its algorithm's cell at the values it reads; a cell "
+        << "that does not read an axis repeats in the rows of all its values.\n\n";
+  out << "| Scenario | Dataset |" << (axes ? " Axes |" : "");
   for (const auto& a : algos) out << " " << algo_display_name(a) << " |";
-  out << "\n|---|---|";
+  out << "\n|---|---|" << (axes ? "---|" : "");
   for (std::size_t i = 0; i < algos.size(); ++i) out << "---:|";
   out << "\n";
   for (const TableRow& row : s.rows) {
-    out << "| " << scenario_display_name(row.scenario) << " | " << dataset_display_name(row.dataset) << " |";
+    out << "| " << scenario_display_name(row.scenario) << " | " << dataset_display_name(row.dataset) << " |"
+        << (axes ? " " + point_text(row.axis) + " |" : "");
     for (const auto& a : algos) {
       const std::string text = cell_text(s.column_cell(row, a), decimals, " ± ", "—");
       const bool best = row.best && *row.best == a;
@@ -94,19 +166,21 @@ std::string table_markdown(const Summary& s) {
   if (!s.poi.empty()) {
     out << "\n## Probability that RAPID-RL beats each baseline\n\n"
         << "P(X > Y) over the ok seeds (Mann–Whitney U / (n_x·n_y), ties count half), 95% stratified-bootstrap "
-           "interval in brackets.\n\n| Scenario | Dataset |";
+           "interval in brackets.\n\n| Scenario | Dataset |" << (axes ? " Axes |" : "");
     std::vector<std::string> baselines;
     for (const auto& a : algos)
       if (a != "rapid-rl") baselines.push_back(a);
     for (const auto& b : baselines) out << " vs " << algo_display_name(b) << " |";
-    out << "\n|---|---|";
+    out << "\n|---|---|" << (axes ? "---|" : "");
     for (std::size_t i = 0; i < baselines.size(); ++i) out << "---:|";
     out << "\n";
     for (const TableRow& row : s.rows) {
-      out << "| " << scenario_display_name(row.scenario) << " | " << dataset_display_name(row.dataset) << " |";
+      out << "| " << scenario_display_name(row.scenario) << " | " << dataset_display_name(row.dataset) << " |"
+          << (axes ? " " + point_text(row.axis) + " |" : "");
+      const std::string point = point_label(row.axis);
       for (const auto& b : baselines) {
         const auto it = std::find_if(s.poi.begin(), s.poi.end(), [&](const PoiEntry& p) {
-          return p.scenario == row.scenario && p.dataset == row.dataset && p.baseline == b;
+          return p.scenario == row.scenario && p.dataset == row.dataset && p.point == point && p.baseline == b;
         });
         if (it == s.poi.end() || std::isnan(it->p)) out << " — |";
         else
@@ -115,6 +189,7 @@ std::string table_markdown(const Summary& s) {
       out << "\n";
     }
   }
+  if (!s.sensitivity.empty()) out << sensitivity_markdown(s, decimals);
   if (!s.aggregate.empty()) {
     out << "\n## IQM per algorithm over all cells\n\n"
         << "Interquartile mean of every ok run's final return, 95% stratified-bootstrap interval (strata = cells). "
@@ -136,7 +211,8 @@ std::string table_latex(const Summary& s) {
       << "\\caption{The average final performance and one standard deviation over seeds of each algorithm across the "
          "driving scenarios and datasets. The cyan-shaded cell is the highest mean of each row; (n=k/N) marks cells "
          "where only k of N seeds finished.}\n"
-      << "\\begin{tabular}{ll" << std::string(algos.size(), 'c') << "}\n\\toprule\nScenario & Dataset";
+      << "\\begin{tabular}{ll" << (s.grid.axes.empty() ? "" : "l") << std::string(algos.size(), 'c')
+      << "}\n\\toprule\nScenario & Dataset" << (s.grid.axes.empty() ? "" : " & Axes");
   for (const auto& a : algos) out << " & " << algo_display_name(a);
   out << " \\\\\n";
   std::string previous;
@@ -145,6 +221,7 @@ std::string table_latex(const Summary& s) {
     previous = row.scenario;
     if (first) out << "\\midrule\n" << latex_escape(scenario_display_name(row.scenario));
     out << " & " << dataset_display_name(row.dataset);
+    if (!s.grid.axes.empty()) out << " & " << latex_escape(point_text(row.axis));
     for (const auto& a : algos) {
       const CellSummary* c = s.column_cell(row, a);
       std::string text;
@@ -168,10 +245,12 @@ std::string table_csv(const Summary& s) {
   const auto algos = columns(s);
   std::ostringstream out;
   out << "scenario,dataset";
+  for (const GridAxis& axis : s.grid.axes) out << "," << axis.key;
   for (const auto& a : algos) out << "," << a << "_mean," << a << "_std," << a << "_n_ok," << a << "_n_expected";
   out << ",best\n";
   for (const TableRow& row : s.rows) {
     out << row.scenario << "," << row.dataset;
+    for (const GridAxis& axis : s.grid.axes) out << "," << axis_text(row.axis, axis.key);
     for (const auto& a : algos) {
       const CellSummary* c = s.column_cell(row, a);
       if (!c) {
@@ -181,6 +260,21 @@ std::string table_csv(const Summary& s) {
       out << "," << exact_number(c->mean) << "," << exact_number(c->std) << "," << c->n_ok << "," << c->n_expected;
     }
     out << "," << row.best.value_or("") << "\n";
+  }
+  return out.str();
+}
+
+std::string runs_csv(const Summary& s) {
+  std::ostringstream out;
+  out << "scenario,dataset,algo";
+  for (const GridAxis& axis : s.grid.axes) out << "," << axis.key;
+  out << ",seed,step,return\n";
+  for (const CellSummary& c : s.cells) {
+    std::string prefix = c.scenario + "," + (c.dataset.empty() ? "none" : c.dataset) + "," + c.algo;
+    for (const GridAxis& axis : s.grid.axes) prefix += "," + axis_text(c.axis, axis.key);
+    for (const SeedResult& r : c.seeds)
+      for (const auto& [step, ret] : r.eval)
+        out << prefix << "," << r.seed << "," << exact_number(step) << "," << exact_number(ret) << "\n";
   }
   return out.str();
 }

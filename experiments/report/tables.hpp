@@ -15,5 +15,9 @@ std::string table_latex(const Summary& summary);
 // One line per row: scenario,dataset, then per algorithm mean,std,n_ok,n_expected (exact
 // numbers, empty when there is no ok seed), then the best algorithm.
 std::string table_csv(const Summary& summary);
+// runs.csv, the long format for pandas / seaborn / rliable: one line per ok run × evaluation,
+// scenario,dataset,algo,<one column per axis>,seed,step,return (dataset "none" for ddpg; an axis
+// column is empty for a cell that does not read it; step: the evaluation's target step).
+std::string runs_csv(const Summary& summary);
 
 }  // namespace rapid

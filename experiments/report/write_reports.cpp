@@ -17,6 +17,7 @@ void write_reports(const Summary& summary, const fs::path& out_dir, std::ostream
   write_file_atomic((out_dir / "table.md").string(), table_markdown(summary));
   write_file_atomic((out_dir / "table.tex").string(), table_latex(summary));
   write_file_atomic((out_dir / "table.csv").string(), table_csv(summary));
+  write_file_atomic((out_dir / "runs.csv").string(), runs_csv(summary));
   write_file_atomic((out_dir / "summary.json").string(), summary_to_json(summary).dump(1) + "\n");
   write_file_atomic((out_dir / "claims.md").string(), claims_markdown(summary));
 
@@ -26,7 +27,7 @@ void write_reports(const Summary& summary, const fs::path& out_dir, std::ostream
     expected += c.n_expected;
   }
   out << "summarized " << summary.cells.size() << " cells (" << ok << "/" << expected << " runs ok) into "
-      << out_dir.string() << ": table.md table.tex table.csv summary.json claims.md\n";
+      << out_dir.string() << ": table.md table.tex table.csv runs.csv summary.json claims.md\n";
   for (const std::string& w : summary.warnings) out << "warning: " << w << "\n";
   for (const ClaimResult& c : summary.claims) out << "  " << c.id << " " << c.verdict << ": " << c.reason << "\n";
 }

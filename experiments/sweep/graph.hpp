@@ -16,6 +16,9 @@
 //   jobs/<scenario>/<dataset|none>/<algo>/seed<N>/
 //                                              record.json, log.txt, progress.json, actor.ckpt and
 //                                              outcome.json of one training run (`none`: ddpg)
+// A grid with axes (grid.hpp) adds the job's point as one more folder, only for the jobs that read
+// an axis: jobs/<scenario>/<point>/{reference,datasets}/ with datasets/<point>/<scenario>/…, and
+// jobs/<scenario>/<dataset|none>/<algo>/<point>/seed<N>/, e.g. …/rapid-rl/epsilon=0.3/seed0/.
 #pragma once
 
 #include <cstdint>
@@ -49,11 +52,16 @@ struct SweepJob {
   std::string dataset;  // cells of prior algorithms; empty for ddpg and the dataset-stage jobs
   std::string algo;     // cells only
   std::uint64_t seed = 0;  // cells only
+  AxisPoint axis;       // the values of the grid's axes the job reads (empty without axes)
   std::string dir;      // the job's folder (log, outcome; a cell's record)
   std::vector<std::size_t> deps;  // indices of jobs that must be ok first
 
-  // "pendulum/initial/rapid-rl/seed0", "pendulum/none/ddpg/seed1", "pendulum/reference", …
+  // "pendulum/initial/rapid-rl/seed0", "pendulum/none/ddpg/seed1", "pendulum/reference",
+  // "merge/initial/rapid-rl/epsilon=0.3/seed0", "merge/inflow=900/reference", …
   std::string id() const;
+  std::string point() const { return point_label(axis); }
+  // The part of the job's point its scenario's reference and datasets read: where its datasets are.
+  AxisPoint reference_point() const;
   int stage() const { return static_cast<int>(kind); }
 };
 
@@ -61,8 +69,9 @@ struct JobGraph {
   std::vector<SweepJob> jobs;  // ordered by stage, then scenario, dataset, algorithm, seed
 };
 
-// Expands the grid: one cell per scenario × dataset × prior algorithm × seed and one per
-// scenario × seed for ddpg; a reference and a dataset job per scenario that has prior cells.
+// Expands the grid: one cell per scenario × dataset × prior algorithm × point × seed and one per
+// scenario × point × seed for ddpg (points: the axis values the algorithm reads); a reference and
+// a dataset job per scenario × point of the keys they read, when the grid has prior cells.
 JobGraph build_job_graph(const Grid& grid);
 
 // The `rapid` arguments (without the binary) that run the job, relative to the sweep folder.
@@ -77,5 +86,9 @@ std::string job_progress_path(const SweepJob& job);
 
 // The dataset file a prior cell trains on, relative to the sweep folder; empty for ddpg.
 std::string cell_dataset_path(const SweepJob& job);
+
+// The root of the dataset folders of a reference point: "datasets" or "datasets/<point>" (the
+// scenario's folder is below it, as `rapid dataset build --dir` writes it).
+std::string datasets_root(const AxisPoint& reference_point);
 
 }  // namespace rapid

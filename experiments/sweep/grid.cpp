@@ -7,6 +7,7 @@
 
 #include "algos/registry.hpp"
 #include "envs/env.hpp"
+#include "experiments/run/config_keys.hpp"
 #include "experiments/run/dataset_build.hpp"
 #include "experiments/run/json_input.hpp"
 #include "experiments/run/run_config.hpp"
@@ -19,7 +20,9 @@ using nlohmann::json;
 
 const std::set<std::string> kTopLevelKeys = {"name",   "description",     "scenarios", "datasets",    "algos",
                                              "seeds",  "config",          "scenario_config", "reference",
-                                             "max_retries", "jobs", "profile"};
+                                             "max_retries", "jobs", "profile", "axes"};
+// An axis longer than this is a mistake, not a study (each value is validated against the config).
+constexpr std::size_t kMaxAxisValues = 1000;
 // The double the default float came from, so grid.json shows 0.1 rather than 0.100000001.
 constexpr double kDefaultReferenceNoise = 0.1;
 const std::set<std::string> kReferenceKeys = {"seed", "transitions", "noise_std", "steps"};
@@ -28,6 +31,17 @@ std::string joined(const std::vector<std::string>& names) {
   std::string out;
   for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
   return out;
+}
+
+// How many points axis_points would list, without listing them (saturates instead of overflowing).
+std::size_t point_count(const Grid& grid, const std::string& scenario, const std::function<bool(const std::string&)>& reads) {
+  std::size_t n = 1;
+  for (const GridAxis& axis : grid.axes) {
+    const auto it = axis.values.find(scenario);
+    if (it == axis.values.end() || !reads(axis.key)) continue;
+    n = std::min(n * it->second.size(), kMaxGridJobs + 1);
+  }
+  return n;
 }
 
 // Collects the validation context so every message has the same "grid PATH: FIELD: …" shape.
@@ -95,16 +109,24 @@ class GridChecker {
   }
 
   // The runner keeps every job in memory and scans them while it schedules; a grid far beyond any
-  // study (the paper grid is about 500 jobs) is refused rather than left to stall it.
+  // study (the paper grid is about 500 jobs) is refused rather than left to stall it. Counted from
+  // the axes' sizes alone, before any value is validated.
   void job_count(const Grid& grid) const {
-    std::size_t prior = 0;
-    for (const std::string& a : grid.algos) prior += find_algorithm(a).uses_prior;
-    const std::size_t per_seed = grid.datasets.size() * prior + (grid.algos.size() - prior);
-    const std::size_t dataset_stage = prior > 0 ? 2 : 0;  // the reference and the dataset job
-    const std::size_t jobs = grid.scenarios.size() * (dataset_stage + per_seed * grid.seeds.size());
+    const bool prior = grid_uses_prior(grid);
+    std::size_t jobs = 0;
+    const auto add = [&](std::size_t n) { jobs = std::min(jobs + n, kMaxGridJobs + 1); };
+    for (const std::string& scenario : grid.scenarios) {
+      if (prior) add(2 * point_count(grid, scenario, reference_reads));  // the reference and the dataset job
+      for (const std::string& a : grid.algos) {
+        const Algorithm& algo = find_algorithm(a);
+        const std::size_t per_seed = (algo.uses_prior ? grid.datasets.size() : 1) *
+                                     point_count(grid, scenario, [&](const std::string& k) { return algo.reads(k); });
+        add(std::min(per_seed, kMaxGridJobs + 1) * grid.seeds.size());
+      }
+    }
     if (jobs > kMaxGridJobs)
-      fail("seeds", "the grid expands to " + std::to_string(jobs) + " jobs; at most " + std::to_string(kMaxGridJobs) +
-                        " per sweep (split it into several grids)");
+      fail(grid.axes.empty() ? "seeds" : "axes", "the grid expands to more than " + std::to_string(kMaxGridJobs) +
+                                                     " jobs, the most one sweep may hold (split it into several grids)");
   }
 
   std::uint64_t non_negative_integer(const json& v, const std::string& field) const {
@@ -163,9 +185,12 @@ void parse_reference_steps(const GridChecker& check, const json& ref, Grid& grid
   const json& steps = ref["steps"];
   auto one = [&](const std::string& scenario, const json& v, const std::string& field) {
     const std::uint64_t n = check.non_negative_integer(v, field);
-    const long budget = cell_config(grid, scenario).at("steps").get<long>();
-    if (static_cast<long>(n) < budget)
-      check.fail(field, std::to_string(n) + " is below the cells' budget of " + std::to_string(budget) + " steps");
+    for (const AxisPoint& point : axis_points(grid, scenario, reference_reads)) {
+      const long budget = cell_config(grid, scenario, point).at("steps").get<long>();
+      if (static_cast<long>(n) < budget)
+        check.fail(field, std::to_string(n) + " is below the cells' budget of " + std::to_string(budget) + " steps" +
+                              (point.empty() ? "" : " at " + point_label(point)));
+    }
     grid.reference_steps[scenario] = static_cast<long>(n);
   };
   if (steps.is_object()) {
@@ -223,6 +248,79 @@ void check_overrides(const GridChecker& check, const Grid& grid) {
   }
 }
 
+// "axes": the shape only (keys, scenarios, arrays); the values are checked by check_axis_values
+// once the job count is known to be sane.
+void parse_axes(const GridChecker& check, const json& axes, Grid& grid) {
+  for (const auto& [key, spec] : axes.items()) {
+    const std::string field = "axes." + key;
+    const ConfigKey* k = find_config_key(key);
+    if (k == nullptr) check.fail(field, "'" + key + "' is not a config key (docs/algorithms.md lists them)");
+    GridAxis axis;
+    axis.key = key;
+    auto take = [&](const std::string& scenario, const json& list, const std::string& at) {
+      if (!k->applies_to(scenario))
+        check.fail(at, "'" + key + "' is not a key of scenario '" + scenario + "'" +
+                           (spec.is_array() ? "; give its values per scenario ({\"scenario\": [...]})" : ""));
+      if (!list.is_array()) check.fail(at, "expected an array of values, got " + json_excerpt(list));
+      if (list.empty()) check.fail(at, "must not be empty");
+      if (list.size() > kMaxAxisValues)
+        check.fail(at, std::to_string(list.size()) + " values; at most " + std::to_string(kMaxAxisValues));
+      axis.values[scenario] = std::vector<json>(list.begin(), list.end());
+    };
+    if (spec.is_array()) {
+      for (const std::string& scenario : grid.scenarios) take(scenario, spec, field);
+    } else if (spec.is_object()) {
+      if (spec.empty()) check.fail(field, "must not be empty");
+      for (const auto& [scenario, list] : spec.items()) {
+        if (std::find(grid.scenarios.begin(), grid.scenarios.end(), scenario) == grid.scenarios.end())
+          check.fail(field + "." + scenario, "'" + scenario + "' is not one of the grid's scenarios");
+        take(scenario, list, field + "." + scenario);
+      }
+    } else {
+      check.fail(field, "expected an array of values or an object scenario → array, got " + json_excerpt(spec));
+    }
+    // An axis no job reads would multiply nothing: most likely the algorithm that owns it is missing.
+    const bool read = reference_reads(key) || std::any_of(grid.algos.begin(), grid.algos.end(), [&](const std::string& a) {
+                        return find_algorithm(a).reads(key);
+                      });
+    if (!read) check.fail(field, "no algorithm of the grid reads '" + key + "'");
+    grid.axes.push_back(std::move(axis));
+  }
+}
+
+// Each axis value must make a valid config on top of the grid's own, be told apart from the
+// others in folder names, and not repeat one (1 and 1.0 are the same value).
+void check_axis_values(const GridChecker& check, const Grid& grid) {
+  for (const GridAxis& axis : grid.axes) {
+    const ConfigKey& k = *find_config_key(axis.key);
+    for (const auto& [scenario, values] : axis.values) {
+      const std::string field = "axes." + axis.key + (axis.values.size() == grid.scenarios.size() ? "" : "." + scenario);
+      const json base = cell_config(grid, scenario);
+      std::vector<json> canonical;
+      std::set<std::string> labels;
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        const std::string at = field + "[" + std::to_string(i) + "]";
+        json config = base;
+        json value;
+        try {
+          apply_overrides(config, json{{axis.key, values[i]}}, scenario, at);
+          value = k.write(run_config_from_json(config, scenario));
+        } catch (const std::invalid_argument& e) {
+          check.fail(at, without_prefix(e.what(), at + ": ") +
+                             (axis.values.size() > 1 ? " (with the defaults of '" + scenario + "')" : ""));
+        }
+        const auto same = std::find(canonical.begin(), canonical.end(), value);
+        if (same != canonical.end())
+          check.fail(at, "duplicate value " + json_excerpt(values[i]) + " (same as [" +
+                             std::to_string(same - canonical.begin()) + "])");
+        if (!labels.insert(axis_value_label(values[i])).second)
+          check.fail(at, "value " + json_excerpt(values[i]) + " has the same folder name as an earlier one");
+        canonical.push_back(value);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 Grid parse_grid(const json& doc, const std::string& label) {
@@ -246,6 +344,7 @@ Grid parse_grid(const json& doc, const std::string& label) {
     if (std::find(names.begin(), names.end(), grid.profile) == names.end())
       check.fail("profile", "unknown profile '" + grid.profile + "'; expected one of " + joined(names));
   }
+  parse_axes(check, check.object_or_empty(doc, "axes"), grid);
   check.job_count(grid);
   grid.config = check.object_or_empty(doc, "config");
   grid.scenario_config = check.object_or_empty(doc, "scenario_config");
@@ -261,6 +360,7 @@ Grid parse_grid(const json& doc, const std::string& label) {
     grid.jobs = static_cast<int>(j);
   }
   check_overrides(check, grid);
+  check_axis_values(check, grid);
   parse_reference_steps(check, check.object_or_empty(doc, "reference"), grid);
 
   grid.normalized = doc;
@@ -326,8 +426,49 @@ ReferenceSettings reference_for(const Grid& grid, const std::string& scenario) {
   return r;
 }
 
-nlohmann::json cell_config(const Grid& grid, const std::string& scenario) {
-  return resolve_config(scenario, grid.profile, grid_overrides(grid, scenario), nlohmann::json());
+nlohmann::json cell_config(const Grid& grid, const std::string& scenario, const AxisPoint& point) {
+  json overrides = grid_overrides(grid, scenario);
+  for (const auto& [key, value] : point) overrides[key] = value;
+  return resolve_config(scenario, grid.profile, overrides, nlohmann::json());
+}
+
+std::vector<AxisPoint> axis_points(const Grid& grid, const std::string& scenario,
+                                   const std::function<bool(const std::string& key)>& reads) {
+  std::vector<AxisPoint> points = {{}};
+  for (const GridAxis& axis : grid.axes) {
+    const auto it = axis.values.find(scenario);
+    if (it == axis.values.end() || !reads(axis.key)) continue;
+    std::vector<AxisPoint> longer;
+    for (const AxisPoint& p : points)
+      for (const json& value : it->second) {
+        longer.push_back(p);
+        longer.back().emplace_back(axis.key, value);
+      }
+    points = std::move(longer);
+  }
+  return points;
+}
+
+bool reference_reads(const std::string& key) { return !is_algorithm_key(key); }
+
+std::string axis_value_label(const json& value) {
+  if (value.is_string()) return value.get<std::string>();
+  if (!value.is_array()) return value.dump();
+  std::string out;
+  for (const json& e : value) out += (out.empty() ? "" : "x") + axis_value_label(e);
+  return out;
+}
+
+std::string point_label(const AxisPoint& point) {
+  std::string out;
+  for (const auto& [key, value] : point) out += (out.empty() ? "" : ",") + key + "=" + axis_value_label(value);
+  return out;
+}
+
+std::vector<std::string> point_arguments(const AxisPoint& point) {
+  std::vector<std::string> args;
+  for (const auto& [key, value] : point) args.insert(args.end(), {"--set", key + "=" + value.dump()});
+  return args;
 }
 
 }  // namespace rapid

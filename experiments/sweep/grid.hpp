@@ -17,11 +17,18 @@
 //                     and optionally "steps": L, the reference's own training length (an
 //                     integer, or an object scenario → integer; default: the cells' steps)
 //   "profile"         optional "short" (default) or "flow": the config files cells start from
+//   "axes"            optional object: config key → values the sweep varies it over, as an array
+//                     for every scenario or an object scenario → array (a scenario left out keeps
+//                     its one value). Jobs run at every combination of the axes they read: a cell
+//                     at those its algorithm reads (algos/registry.hpp: ε only for RAPID-RL, …),
+//                     the reference and dataset jobs at those of keys no algorithm owns. Applied
+//                     after "config" and "scenario_config" (docs/sweeps.md §Axes)
 //   "max_retries"     optional non-negative integer (default 2): extra attempts per failed job
 //   "jobs"            optional positive integer: worker processes when --jobs is not given
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -33,6 +40,15 @@
 
 namespace rapid {
 
+// One entry of "axes": a config key and its values per scenario, as the grid spells them.
+struct GridAxis {
+  std::string key;
+  std::map<std::string, std::vector<nlohmann::json>> values;  // scenario → values; absent: not varied there
+};
+
+// One combination of axis values, (key, value) in the grid's axis order; empty without axes.
+using AxisPoint = std::vector<std::pair<std::string, nlohmann::json>>;
+
 struct Grid {
   std::string name;
   std::string description;
@@ -43,6 +59,7 @@ struct Grid {
   nlohmann::json scenario_config = nlohmann::json::object();
   ReferenceSettings reference;
   std::map<std::string, long> reference_steps;  // "reference"."steps" by scenario (absent: 0)
+  std::vector<GridAxis> axes;  // in key order
   int max_retries = 2;
   std::optional<int> jobs;
   // The grid with every default spelled out, as written to SWEEP/grid.json. Kept as parsed (not
@@ -74,8 +91,28 @@ bool grid_uses_prior(const Grid& grid);
 // The reference settings of `scenario`'s dataset build.
 ReferenceSettings reference_for(const Grid& grid, const std::string& scenario);
 
-// The resolved config of the grid's cells of `scenario`: its profile's file, then the overrides.
-nlohmann::json cell_config(const Grid& grid, const std::string& scenario);
+// The resolved config of the grid's cells of `scenario` at `point`: its profile's file, then the
+// overrides, then the point's axis values.
+nlohmann::json cell_config(const Grid& grid, const std::string& scenario, const AxisPoint& point = {});
+
+// The points a job of `scenario` runs at: every combination of the values of the axes that vary
+// in that scenario and whose key `reads` accepts, in the grid's order (the last axis fastest).
+// One empty point when no such axis exists.
+std::vector<AxisPoint> axis_points(const Grid& grid, const std::string& scenario,
+                                   const std::function<bool(const std::string& key)>& reads);
+
+// Whether the reference agent and dataset jobs read `key`: every key no algorithm owns.
+bool reference_reads(const std::string& key);
+
+// A value as it appears in folder names, ids and `--only`: the JSON number or string as the grid
+// spells it ("-0.15", "flow"), a list joined by 'x' ("256x256").
+std::string axis_value_label(const nlohmann::json& value);
+
+// "epsilon=0.3,lambda_bc=10"; empty for the empty point.
+std::string point_label(const AxisPoint& point);
+
+// The `--set key=value` arguments that put a job at `point`.
+std::vector<std::string> point_arguments(const AxisPoint& point);
 
 // Human-readable differences between two normalized grids, one per changed leaf, e.g.
 // "config.steps: 1500 → 2000" or "seeds: [0,1] → [0,1,2]". Empty when they are equal.

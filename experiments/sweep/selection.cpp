@@ -33,6 +33,29 @@ void add_name(std::set<std::string>& into, const std::string& key, const std::st
   into.insert(value);
 }
 
+// The grid's value of axis `axis` that `text` names: spelled the same, or the same number.
+const nlohmann::json* axis_value(const GridAxis& axis, const std::string& text) {
+  const nlohmann::json parsed = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  for (const auto& [scenario, values] : axis.values)
+    for (const nlohmann::json& v : values) {
+      if (axis_value_label(v) == text) return &v;
+      if (v.is_number() && parsed.is_number() && v.get<double>() == parsed.get<double>()) return &v;
+    }
+  return nullptr;
+}
+
+std::vector<std::string> axis_labels(const GridAxis& axis) {
+  std::vector<std::string> out;
+  for (const auto& [scenario, values] : axis.values)
+    for (const nlohmann::json& v : values)
+      if (std::find(out.begin(), out.end(), axis_value_label(v)) == out.end()) out.push_back(axis_value_label(v));
+  return out;
+}
+
+bool same_value(const nlohmann::json& a, const nlohmann::json& b) {
+  return a == b || (a.is_number() && b.is_number() && a.get<double>() == b.get<double>());
+}
+
 }  // namespace
 
 Selection parse_selection(const std::string& text, const Grid& grid, const JobGraph& graph) {
@@ -62,8 +85,16 @@ Selection parse_selection(const std::string& text, const Grid& grid, const JobGr
         if (std::find(grid.seeds.begin(), grid.seeds.end(), seed) == grid.seeds.end())
           fail("seed " + value + " is not in the grid's seeds");
         s.seeds.insert(seed);
+      } else if (const auto axis = std::find_if(grid.axes.begin(), grid.axes.end(),
+                                                [&](const GridAxis& a) { return a.key == key; });
+                 axis != grid.axes.end()) {
+        const nlohmann::json* v = axis_value(*axis, value);
+        if (v == nullptr) fail(key + " '" + value + "' is not a value of the grid's axis; expected one of " + listed(axis_labels(*axis)));
+        s.axes[key].push_back(*v);
       } else {
-        fail("unknown key '" + key + "'; expected scenario, dataset, algo or seed");
+        std::string keys = "scenario, dataset, algo, seed";
+        for (const GridAxis& a : grid.axes) keys += ", " + a.key;
+        fail("unknown key '" + key + "'; expected " + keys);
       }
     }
   }
@@ -75,8 +106,16 @@ Selection parse_selection(const std::string& text, const Grid& grid, const JobGr
 bool selects(const Selection& s, const SweepJob& job) {
   if (job.kind != JobKind::kCell) return s.text.empty();
   const std::string dataset = job.dataset.empty() ? sweep_files::kNoDataset : job.dataset;
-  return (s.scenarios.empty() || s.scenarios.count(job.scenario)) && (s.datasets.empty() || s.datasets.count(dataset)) &&
-         (s.algos.empty() || s.algos.count(job.algo)) && (s.seeds.empty() || s.seeds.count(job.seed));
+  const bool named = (s.scenarios.empty() || s.scenarios.count(job.scenario)) &&
+                     (s.datasets.empty() || s.datasets.count(dataset)) && (s.algos.empty() || s.algos.count(job.algo)) &&
+                     (s.seeds.empty() || s.seeds.count(job.seed));
+  if (!named) return false;
+  for (const auto& [key, accepted] : s.axes)
+    for (const auto& [job_key, value] : job.axis)
+      if (job_key == key && std::none_of(accepted.begin(), accepted.end(),
+                                         [&](const nlohmann::json& a) { return same_value(a, value); }))
+        return false;
+  return true;
 }
 
 std::vector<bool> selected_with_dependencies(const Selection& selection, const JobGraph& graph) {

@@ -1,11 +1,15 @@
 // `rapid sweep --only`: which cells of the grid a sweep works on. Filters are comma-separated
-// key=value pairs over scenario, dataset, algo and seed; a key given twice (seed=0,seed=1) or a
-// value with alternatives (seed=0|1) accepts any of them; keys not given accept everything.
+// key=value pairs over scenario, dataset, algo, seed and the grid's axis keys (epsilon=0.3); a
+// key given twice (seed=0,seed=1) or a value with alternatives (seed=0|1) accepts any of them;
+// keys not given accept everything. A cell that does not read an axis (ddpg and ε) is shared by
+// all of its values, so an axis filter keeps it.
 // ddpg cells have no dataset: `dataset=none` selects them, any other dataset filter does not.
 // A selected cell pulls in the jobs it depends on (its scenario's reference and dataset jobs).
 #pragma once
 
 #include <cstdint>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
@@ -18,6 +22,7 @@ namespace rapid {
 struct Selection {
   std::set<std::string> scenarios, datasets, algos;
   std::set<std::uint64_t> seeds;
+  std::map<std::string, std::vector<nlohmann::json>> axes;  // axis key → accepted values
   std::string text;  // as given, for the manifest; empty = everything
 };
 

@@ -41,14 +41,14 @@ std::string expected_cell_hash(const SweepFolder& folder, const SweepJob& cell) 
     if (!fs::is_regular_file(spec.dataset_path))
       throw std::runtime_error("dataset " + cell_dataset_path(cell) + " is missing");
   }
-  spec.config = cell_config(folder.grid, cell.scenario);
+  spec.config = cell_config(folder.grid, cell.scenario, cell.axis);
   return job_config_hash(spec);
 }
 
 std::string dataset_stage_inputs_hash(const SweepFolder& folder, const SweepJob& job) {
   const nlohmann::json inputs = {
       {"scenario", job.scenario},
-      {"config", cell_config(folder.grid, job.scenario)},
+      {"config", cell_config(folder.grid, job.scenario, job.axis)},
       {"reference", folder.grid.normalized.at("reference")},
   };
   return fnv1a_hex(inputs.dump());
