@@ -197,6 +197,18 @@ TEST(SweepAxes, ResumesAfterAKillRerunsOnlyTheEditedValueAndReportsPerAxis) {
   EXPECT_EQ(lines, 6 * 3);  // six runs (the stale λ_BC=10 cell is no longer in the grid) × evaluations at 0, 2000, 4000
   EXPECT_EQ(ddpg, 3);
   EXPECT_TRUE(fs::exists(sweep / "table.md"));
+
+  // rapid diff keys cells by their point: a changed result at one axis value is named as such.
+  const fs::path baseline = dir.path() / "baseline.json";
+  ASSERT_EQ(run_rapid("diff " + sweep.string() + " " + baseline.string() + " --write-baseline").exit_code, 0);
+  json base = read_json(baseline);
+  for (json& cell : base["cells"])
+    if (cell["cell"] == "pendulum/initial/rapid-rl/epsilon=0.3") cell["mean"] = cell["mean"].get<double>() + 1.0;
+  write_json(baseline, base);
+  r = run_rapid("diff " + sweep.string() + " " + baseline.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("pendulum/initial/rapid-rl/epsilon=0.3"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1 of 6 cells differ"), std::string::npos) << r.output;
   if (fs::exists(sweep / "figure2.png")) {  // where matplotlib is installed
     EXPECT_TRUE(fs::exists(sweep / "sensitivity-epsilon.png"));
     EXPECT_TRUE(fs::exists(sweep / "sensitivity-lambda_bc.png"));
