@@ -83,7 +83,7 @@ bool cut_in_only(const std::string& scenario) { return scenario == "cut-in"; }
 template <typename T, typename Holder>
 ConfigKey key(std::string name, T Holder::*field, Bounds bounds, std::string doc,
               bool (*for_scenario)(const std::string&) = nullptr) {
-  ConfigKey k{name, part_of<Holder>(), type_name<T>(), bounds, std::move(doc), for_scenario, {}, {}};
+  ConfigKey k{name, part_of<Holder>(), type_name<T>(), bounds, std::move(doc), for_scenario, {}, {}, {}};
   k.read = [name, field, bounds](const nlohmann::json& v, RunConfig& config) {
     const T x = typed<T>(name, v);
     check_bounds(name, bounds, x, v);
@@ -93,12 +93,20 @@ ConfigKey key(std::string name, T Holder::*field, Bounds bounds, std::string doc
   return k;
 }
 
+// A row a config may leave out; its field then holds `neutral` (ConfigKey::set_neutral).
+template <typename T, typename Holder>
+ConfigKey optional_key(std::string name, T Holder::*field, Bounds bounds, T neutral, std::string doc) {
+  ConfigKey k = key(std::move(name), field, bounds, std::move(doc));
+  k.set_neutral = [field, neutral](RunConfig& config) { holder<Holder>(config).*field = neutral; };
+  return k;
+}
+
 // A row whose value is one of a few names.
 ConfigKey choice_key(std::string name, std::string ScenarioSettings::*field, const std::vector<std::string>& choices,
                      std::string doc) {
   std::string list;
   for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
-  ConfigKey k{name, ConfigPart::kScenario, "one of " + list, kAny, std::move(doc), driving, {}, {}};
+  ConfigKey k{name, ConfigPart::kScenario, "one of " + list, kAny, std::move(doc), driving, {}, {}, {}};
   k.read = [name, field, choices, list](const nlohmann::json& v, RunConfig& config) {
     if (!v.is_string() || std::find(choices.begin(), choices.end(), v.get<std::string>()) == choices.end())
       reject(name, "expects one of " + list + ", got " + v.dump());
