@@ -173,6 +173,25 @@ TEST(DefaultConfigs, AnOptionalKeyMayBeLeftOutAndThenHoldsItsNeutralValue) {
   EXPECT_THROW(run_config_from_json(config, "pendulum", keys), std::invalid_argument);
 }
 
+// The real optional key: no config file has it, and a config resolved from a file without one
+// does not have it either, so its arrival changed no config hash; given, they are checked.
+TEST(DefaultConfigs, OptionalKeysLeftOutOfAFileStayOutOfTheResolvedConfig) {
+  for (const char* name : {"bc_q_alpha"}) {
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(find_config_key(name)->optional());
+    for (const auto& [p, s] : config_files()) {
+      ASSERT_FALSE(default_config_json(s, p).contains(name)) << p << " " << s;
+      EXPECT_FALSE(resolve_config(s, p, nlohmann::json(), nlohmann::json()).contains(name)) << p << " " << s;
+    }
+  }
+  const RunConfig neutral = run_config_from_json(default_config_json("merge"), "merge");
+  EXPECT_EQ(neutral.agent.bc_q_alpha, 0.0f);    // off
+  const nlohmann::json given = resolve_config("merge", "short", {{"bc_q_alpha", 2.5}}, nlohmann::json());
+  EXPECT_EQ(given["bc_q_alpha"], 2.5);
+  EXPECT_EQ(run_config_from_json(given, "merge").agent.bc_q_alpha, 2.5f);
+  EXPECT_THROW(resolve_config("merge", "short", {{"bc_q_alpha", -1}}, nlohmann::json()), std::invalid_argument);
+}
+
 // Scenario keys: a short file leaves them out and gets the scenario's built-in values; the flow
 // files set the paper's scale; values are checked by key, by scenario and across keys.
 TEST(ScenarioKeys, ShortFilesKeepTheBuiltInSettingsAndFlowFilesSetThePapersScale) {

@@ -171,6 +171,9 @@ const std::vector<ConfigKey>& config_keys() {
       key("lambda_bc", &AgentConfig::lambda_bc, kNonNegative, "CoL's imitation weight λ_BC"),
       key("epsilon", &AgentConfig::epsilon, kAny,
           "RAPID-RL's reward threshold ε, in the scenario's reward units (docs/scenarios.md)"),
+      optional_key("bc_q_alpha", &AgentConfig::bc_q_alpha, kNonNegative, 0.0f,
+                   "TD3+BC's α: an algorithm with an imitation term scales its actor loss's Q term by "
+                   "λ = α / (mean absolute Q(s, π(s)) over the batch); absent or 0: off (no scaling)"),
       key("steps", &RunConfig::steps, kPositive, "environment decisions of training"),
       key("warmup_steps", &RunConfig::warmup_steps, kNonNegative,
           "decisions of uniform-random actions, without updates, before learning starts"),
