@@ -1,5 +1,6 @@
 #include "algos/actor_critic.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -48,12 +49,25 @@ const RowVec& ActorCritic::critic_targets(const Batch& batch) {
   return y_;
 }
 
-float ActorCritic::actor_objective(const Batch& batch, UpdateStats& stats) {
+// TD3+BC (Fujimoto & Gu 2021): λ = α / mean |Q(s, π(s))| keeps the Q term at scale α whatever
+// the scale of the returns, so the imitation term's weights weigh the same against it in every
+// scenario. λ is a constant of the step: no gradient flows through the mean. The floor only keeps
+// λ finite when every Q is ~0 (a critic at its initialisation); it is far below the |Q| of any
+// trained critic here. Off (α = 0, or no imitation term): exactly 1, so the loss is the plain
+// one bit for bit (a product with 1 is exact).
+float ActorCritic::q_weight_of(const Mat& q) const {
+  constexpr float kMinMeanAbsQ = 1e-3f;
+  if (config_.bc_q_alpha <= 0.0f || !imitates()) return 1.0f;
+  return config_.bc_q_alpha / std::max(q.cwiseAbs().mean(), kMinMeanAbsQ);
+}
+
+float ActorCritic::actor_objective(const Batch& batch, UpdateStats& stats, std::optional<float> fixed_q_weight) {
   const int b = batch.size();
   pi_ = actor_.forward(batch.obs);
   const Mat& q = critic_.forward(critic_input(batch.obs, pi_));
-  // −(1/B) Σ Q(s, π(s)): back-propagate through the critic into the action, not its weights.
-  dq_.setConstant(1, b, -1.0f / static_cast<float>(b));
+  const float lambda = fixed_q_weight ? *fixed_q_weight : q_weight_of(q);
+  // −λ·(1/B) Σ Q(s, π(s)): back-propagate through the critic into the action, not its weights.
+  dq_.setConstant(1, b, -lambda / static_cast<float>(b));
   dpi_ = critic_.backward(dq_, Grads::kInputOnly).bottomRows(act_dim_);
 
   // The imitation term (1/B) Σ w_i ‖π(s_i) − a_i‖², the only place the algorithms differ.
@@ -66,12 +80,13 @@ float ActorCritic::actor_objective(const Batch& batch, UpdateStats& stats) {
   stats.bc_prior = n_prior > 0 ? sq_err_.head(n_prior).mean() : std::numeric_limits<float>::quiet_NaN();
   stats.bc_online = n_prior < b ? sq_err_.tail(b - n_prior).mean() : std::numeric_limits<float>::quiet_NaN();
   stats.bc_term = bc;
-  stats.actor_loss = -q.mean() + bc;
+  stats.q_weight = lambda;
+  stats.actor_loss = -lambda * q.mean() + bc;
   return stats.actor_loss;
 }
 
-float ActorCritic::actor_gradient(const Batch& batch, UpdateStats& stats) {
-  const float loss = actor_objective(batch, stats);
+float ActorCritic::actor_gradient(const Batch& batch, UpdateStats& stats, std::optional<float> fixed_q_weight) {
+  const float loss = actor_objective(batch, stats, fixed_q_weight);
   actor_.zero_grad();
   actor_.backward(dpi_, Grads::kParamsOnly);
   return loss;
@@ -80,6 +95,17 @@ float ActorCritic::actor_gradient(const Batch& batch, UpdateStats& stats) {
 float ActorCritic::compute_actor_gradient(const Batch& batch) {
   UpdateStats stats;
   return actor_gradient(batch, stats);
+}
+
+float ActorCritic::compute_actor_gradient(const Batch& batch, float q_weight) {
+  UpdateStats stats;
+  return actor_gradient(batch, stats, q_weight);
+}
+
+float ActorCritic::q_weight(const Batch& batch) {
+  UpdateStats stats;
+  actor_objective(batch, stats, std::nullopt);
+  return stats.q_weight;
 }
 
 void ActorCritic::actor_step(const Batch& batch, UpdateStats& stats) {

@@ -19,6 +19,7 @@ struct AgentConfig {
   float noise_std{};
   float lambda_bc{};
   float epsilon{};   // RAPID-RL's reward threshold ε
+  float bc_q_alpha{};  // TD3+BC's α of the Q term's scale λ; 0: off (an optional key, absent means 0)
 };
 
 }  // namespace rapid

@@ -11,6 +11,7 @@ class ColAll : public ActorCritic {
   using ActorCritic::ActorCritic;
 
  protected:
+  bool imitates() const override { return true; }
   void bc_weights(const Batch& batch, RowVec& w) const override {
     w.setConstant(batch.size(), config().lambda_bc);
   }

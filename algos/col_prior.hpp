@@ -10,6 +10,7 @@ class ColPrior : public ActorCritic {
   using ActorCritic::ActorCritic;
 
  protected:
+  bool imitates() const override { return true; }
   // (1/B) Σ w_i e_i = λ · mean over the prior columns of e_i  ⇔  w_i = λ·B/n_prior there, 0 else.
   void bc_weights(const Batch& batch, RowVec& w) const override {
     const int n = batch.prior_count;

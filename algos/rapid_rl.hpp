@@ -12,6 +12,7 @@ class RapidRl : public ActorCritic {
   using ActorCritic::ActorCritic;
 
  protected:
+  bool imitates() const override { return true; }
   void bc_weights(const Batch& batch, RowVec& w) const override {
     w = (batch.rew.array() - config().epsilon).cwiseMax(0.0f).matrix();
   }

@@ -19,11 +19,11 @@ std::unique_ptr<ActorCritic> make(int obs_dim, int act_dim, const AgentConfig& c
 const std::vector<Algorithm>& algorithms() {
   static const std::vector<Algorithm> table = {
       // name       display      prior  the actor loss's imitation weights  own keys
-      {"rapid-rl", "RAPID-RL", true, make<RapidRl>, {"epsilon"}},
+      {"rapid-rl", "RAPID-RL", true, make<RapidRl>, {"epsilon", "bc_q_alpha"}},
       // RLPD as the paper uses it: the backbone on symmetric batches, no imitation term.
       {"rlpd", "RLPD", true, make<ActorCritic>, {}},
-      {"col-prior", "CoL-prior", true, make<ColPrior>, {"lambda_bc"}},
-      {"col-all", "CoL-all", true, make<ColAll>, {"lambda_bc"}},
+      {"col-prior", "CoL-prior", true, make<ColPrior>, {"lambda_bc", "bc_q_alpha"}},
+      {"col-all", "CoL-all", true, make<ColAll>, {"lambda_bc", "bc_q_alpha"}},
       {"ddpg", "DDPG", false, make<ActorCritic>, {}},
   };
   return table;

@@ -22,7 +22,7 @@ struct Algorithm {
   // The algorithm-specific config keys it reads (ε, λ_BC, …). A key some algorithm lists here is
   // read by those algorithms only; every other key is read by all of them. Sweeps rely on it: a
   // grid axis over such a key does not duplicate the jobs of the algorithms that ignore it
-  // (tests/algos/test_registry.cpp checks that changing the key leaves their updates unchanged).
+  // (tests/test_algos.cpp checks that changing the key leaves their updates unchanged).
   std::vector<std::string> own_keys;
 
   bool reads(const std::string& key) const;

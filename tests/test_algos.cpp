@@ -1,8 +1,10 @@
-// The five algorithms: actor-loss gradients against finite differences, each variant's
-// imitation term, and the critic target's terminal/timeout handling.
+// The algorithms: actor-loss gradients against finite differences, each variant's imitation term,
+// the Q term's TD3+BC normalisation, and the critic target's terminal/timeout handling.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <functional>
+#include <tuple>
 
 #include "algos/registry.hpp"
 #include "tests/finite_difference.hpp"
@@ -46,36 +48,64 @@ std::unique_ptr<ActorCritic> agent(const std::string& name) {
   return find_algorithm(name).make(kObs, kAct, small_config(), 17);
 }
 
-}  // namespace
-
-class ActorLossGradient : public ::testing::TestWithParam<std::string> {};
-
-TEST_P(ActorLossGradient, AgreesWithFiniteDifferences) {
-  auto a = agent(GetParam());
-  // Move the critic away from its near-zero init so the Q term carries weight too.
+// An agent whose critic is moved away from its near-zero init, so the Q term carries weight too.
+std::unique_ptr<ActorCritic> perturbed_agent(const std::string& name, const AgentConfig& config) {
+  auto a = find_algorithm(name).make(kObs, kAct, config, 17);
   Rng rng(5);
   for (Eigen::Index i = 0; i < a->critic().params().size(); ++i)
     a->critic().params()[i] += static_cast<float>(rng.uniform(-0.5, 0.5));
   for (Eigen::Index i = 0; i < a->actor().params().size(); ++i)
     a->actor().params()[i] += static_cast<float>(rng.uniform(-0.3, 0.3));
+  return a;
+}
+
+// Q(s, π(s)) of `a` on the batch, computed apart from the loss.
+RowVec q_of_policy(ActorCritic& a, const Batch& batch) {
+  const Mat pi = a.actor().forward(batch.obs);
+  Mat sa(kObs + kAct, batch.size());
+  sa << batch.obs, pi;
+  return a.critic().forward(sa).row(0);
+}
+
+}  // namespace
+
+// The gradient of every algorithm's actor loss, with the Q term's TD3+BC normalisation off
+// (bc_q_alpha 0) and on.
+class ActorLossGradient : public ::testing::TestWithParam<std::tuple<std::string, float>> {};
+
+TEST_P(ActorLossGradient, AgreesWithFiniteDifferences) {
+  const auto& [name, alpha] = GetParam();
+  AgentConfig config = small_config();
+  config.bc_q_alpha = alpha;
+  auto a = perturbed_agent(name, config);
   const Batch batch = hand_made_batch();
-  a->compute_actor_gradient(batch);
+  // The analytic gradient holds λ constant, so the finite differences must too: λ is taken once,
+  // at the unperturbed parameters, and the perturbed losses are evaluated with it.
+  const float lambda = a->q_weight(batch);
+  if (alpha > 0 && find_algorithm(name).reads("bc_q_alpha")) {
+    EXPECT_NE(lambda, 1.0f);
+  } else {
+    EXPECT_EQ(lambda, 1.0f);
+  }
+  EXPECT_EQ(a->compute_actor_gradient(batch, lambda), a->compute_actor_gradient(batch));
   const Vec grads = a->actor().grads();
   ASSERT_GT(grads.norm(), 0.0f);
   double numeric = 0;
   for (Eigen::Index i = 0; i < grads.size(); ++i) {
-    ASSERT_TRUE(test::central_difference_agrees([&] { return static_cast<double>(a->compute_actor_gradient(batch)); },
-                                                &a->actor().params()[i], grads[i], &numeric))
-        << GetParam() << " actor parameter " << i << ": analytic " << grads[i] << " numeric " << numeric;
+    ASSERT_TRUE(test::central_difference_agrees(
+        [&] { return static_cast<double>(a->compute_actor_gradient(batch, lambda)); }, &a->actor().params()[i],
+        grads[i], &numeric))
+        << name << " actor parameter " << i << ": analytic " << grads[i] << " numeric " << numeric;
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(AllAlgorithms, ActorLossGradient,
-                         ::testing::Values("ddpg", "rlpd", "col-prior", "col-all", "rapid-rl"),
+                         ::testing::Combine(::testing::Values("ddpg", "rlpd", "col-prior", "col-all", "rapid-rl"),
+                                            ::testing::Values(0.0f, 2.5f)),
                          [](const auto& info) {
-                           std::string n = info.param;
+                           std::string n = std::get<0>(info.param);
                            std::replace(n.begin(), n.end(), '-', '_');
-                           return n;
+                           return n + (std::get<1>(info.param) > 0 ? "_q_normalised" : "");
                          });
 
 namespace {
@@ -150,6 +180,7 @@ TEST(Registry, AlgorithmsIgnoreTheKeysOfOtherAlgorithms) {
   const std::vector<std::pair<std::string, std::function<void(AgentConfig&, float)>>> keys = {
       {"epsilon", [](AgentConfig& c, float x) { c.epsilon = x; }},
       {"lambda_bc", [](AgentConfig& c, float x) { c.lambda_bc = x; }},
+      {"bc_q_alpha", [](AgentConfig& c, float x) { c.bc_q_alpha = x; }},
   };
   for (const auto& [key, set] : keys) EXPECT_TRUE(is_algorithm_key(key)) << key;
   const Batch batch = hand_made_batch();
@@ -169,6 +200,53 @@ TEST(Registry, AlgorithmsIgnoreTheKeysOfOtherAlgorithms) {
     }
   EXPECT_FALSE(is_algorithm_key("gamma"));
   EXPECT_TRUE(find_algorithm("ddpg").reads("gamma"));
+}
+
+// TD3+BC's normalisation: with α > 0 the actor loss's Q part is −α·mean Q / mean |Q| over the
+// batch (the imitation part unchanged); off, λ is exactly 1, the loss the plain one.
+TEST(QNormalisation, TheQPartIsAlphaTimesMeanQOverMeanAbsQ) {
+  const Batch batch = hand_made_batch();
+  const float alpha = 2.5f;
+  for (const char* name : {"rapid-rl", "col-prior", "col-all"}) {
+    SCOPED_TRACE(name);
+    AgentConfig on = small_config();
+    on.bc_q_alpha = alpha;
+    auto plain = perturbed_agent(name, small_config()), normalised = perturbed_agent(name, on);
+    const RowVec q = q_of_policy(*plain, batch);
+    ASSERT_GT(q.cwiseAbs().mean(), 0.05f);  // well above the floor
+    // The plain loss is −mean Q + bc; the normalised one keeps bc and rescales the Q part.
+    const double bc = plain->compute_actor_gradient(batch) + q.mean();
+    const double q_part = normalised->compute_actor_gradient(batch) - bc;
+    EXPECT_NEAR(q_part, -alpha * q.mean() / q.cwiseAbs().mean(), 1e-4);
+    EXPECT_FLOAT_EQ(normalised->q_weight(batch), alpha / q.cwiseAbs().mean());
+    EXPECT_EQ(plain->q_weight(batch), 1.0f);
+  }
+}
+
+// Off means λ = 1 exactly, whichever way the loss is evaluated: the plain loss bit for bit.
+TEST(QNormalisation, OffIsThePlainLossBitForBit) {
+  const Batch batch = hand_made_batch();
+  for (const char* name : {"rapid-rl", "col-prior", "col-all", "rlpd", "ddpg"}) {
+    auto a = perturbed_agent(name, small_config()), b = perturbed_agent(name, small_config());
+    EXPECT_EQ(a->q_weight(batch), 1.0f) << name;
+    EXPECT_EQ(a->compute_actor_gradient(batch), b->compute_actor_gradient(batch, 1.0f)) << name;
+    EXPECT_EQ(a->actor().grads(), b->actor().grads()) << name;
+  }
+}
+
+// A critic whose Q is 0 everywhere (all weights zero) would make λ infinite; the floor keeps it finite.
+TEST(QNormalisation, AFloorKeepsLambdaFiniteWhenEveryQIsZero) {
+  AgentConfig on = small_config();
+  on.bc_q_alpha = 2.5f;
+  auto a = find_algorithm("rapid-rl").make(kObs, kAct, on, 17);
+  a->critic().params().setZero();
+  const Batch batch = hand_made_batch();
+  ASSERT_EQ(q_of_policy(*a, batch).cwiseAbs().maxCoeff(), 0.0f);
+  const float lambda = a->q_weight(batch);
+  EXPECT_TRUE(std::isfinite(lambda));
+  EXPECT_GT(lambda, 2.5f);
+  EXPECT_TRUE(std::isfinite(a->compute_actor_gradient(batch)));
+  EXPECT_TRUE(a->actor().grads().allFinite());
 }
 
 // A time-limit truncation is stored as not terminal (ReplayBuffer.SamplesOnlyStoredTransitionsUniformly

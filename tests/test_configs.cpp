@@ -31,7 +31,8 @@ std::vector<std::pair<std::string, std::string>> config_files() {
 }
 
 // The key table as docs/algorithms.md must show it: one row per key, one value column per config
-// file (a scenario key a short file leaves out shows the scenario's built-in value).
+// file (a scenario key a short file leaves out shows the scenario's built-in value, an optional
+// key a file leaves out shows "absent").
 std::string key_table_markdown() {
   std::ostringstream out;
   const auto files = config_files();
@@ -43,8 +44,10 @@ std::string key_table_markdown() {
   for (const ConfigKey& key : config_keys()) {
     out << "| `" << key.name << "` | " << part_name(key.part) << " | " << key.accepts() << " | " << key.doc << " |";
     for (const auto& [p, s] : files) {
-      const RunConfig c = run_config_from_json(default_config_json(s, p), s);
-      out << " " << (key.applies_to(s) ? key.write(c).dump() : "—") << " |";
+      const nlohmann::json file = default_config_json(s, p);
+      const RunConfig c = run_config_from_json(file, s);
+      const std::string value = key.optional() && !file.contains(key.name) ? "absent" : key.write(c).dump();
+      out << " " << (key.applies_to(s) ? value : "—") << " |";
     }
     out << "\n";
   }
@@ -144,6 +147,49 @@ TEST(DefaultConfigs, AKeyOfSomeScenariosOnlyIsRequiredThereAndRefusedElsewhere) 
   EXPECT_THROW(run_config_from_json(merge, "merge", keys), std::invalid_argument);  // missing
   apply_overrides(merge, {{"merge_only", 5}}, "merge", "test", keys);
   EXPECT_NO_THROW(run_config_from_json(merge, "merge", keys));
+}
+
+// An optional key may be left out of a config and then holds its neutral value; a required one
+// may not. Given, an optional key is read like any other.
+TEST(DefaultConfigs, AnOptionalKeyMayBeLeftOutAndThenHoldsItsNeutralValue) {
+  int knob = -1;  // the synthetic keys' field
+  std::vector<ConfigKey> keys = config_keys();
+  ConfigKey optional = *find_config_key("steps");
+  optional.name = "knob";
+  optional.read = [&knob](const nlohmann::json& v, RunConfig&) { knob = v.get<int>(); };
+  optional.set_neutral = [&knob](RunConfig&) { knob = 0; };
+  keys.push_back(optional);
+
+  nlohmann::json config = default_config_json("pendulum");
+  EXPECT_NO_THROW(run_config_from_json(config, "pendulum", keys));
+  EXPECT_EQ(knob, 0);
+  config["knob"] = 5;
+  run_config_from_json(config, "pendulum", keys);
+  EXPECT_EQ(knob, 5);
+
+  keys.back().set_neutral = nullptr;  // the same key, required
+  EXPECT_FALSE(keys.back().optional());
+  config.erase("knob");
+  EXPECT_THROW(run_config_from_json(config, "pendulum", keys), std::invalid_argument);
+}
+
+// The real optional key: no config file has it, and a config resolved from a file without one
+// does not have it either, so its arrival changed no config hash; given, they are checked.
+TEST(DefaultConfigs, OptionalKeysLeftOutOfAFileStayOutOfTheResolvedConfig) {
+  for (const char* name : {"bc_q_alpha"}) {
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(find_config_key(name)->optional());
+    for (const auto& [p, s] : config_files()) {
+      ASSERT_FALSE(default_config_json(s, p).contains(name)) << p << " " << s;
+      EXPECT_FALSE(resolve_config(s, p, nlohmann::json(), nlohmann::json()).contains(name)) << p << " " << s;
+    }
+  }
+  const RunConfig neutral = run_config_from_json(default_config_json("merge"), "merge");
+  EXPECT_EQ(neutral.agent.bc_q_alpha, 0.0f);    // off
+  const nlohmann::json given = resolve_config("merge", "short", {{"bc_q_alpha", 2.5}}, nlohmann::json());
+  EXPECT_EQ(given["bc_q_alpha"], 2.5);
+  EXPECT_EQ(run_config_from_json(given, "merge").agent.bc_q_alpha, 2.5f);
+  EXPECT_THROW(resolve_config("merge", "short", {{"bc_q_alpha", -1}}, nlohmann::json()), std::invalid_argument);
 }
 
 // Scenario keys: a short file leaves them out and gets the scenario's built-in values; the flow

@@ -4,6 +4,8 @@
 // an allocator that tells libsumo's own allocations apart.)
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include "algos/registry.hpp"
 #include "core/adam.hpp"
 #include "core/mlp.hpp"
@@ -60,10 +62,12 @@ TEST(NoAllocation, ReplayInsertionWrapsAroundWithoutAllocating) {
 }
 
 // One full ActorCritic::update (actor step, critic step, both Polyak updates) per algorithm, at the
-// driving scenarios' default sizes (experiments/configs: 128-128, batch 128; 18 observations).
-class UpdateAllocation : public ::testing::TestWithParam<std::string> {};
+// driving scenarios' default sizes (experiments/configs: 128-128, batch 128; 18 observations), with
+// the Q term's normalisation (bc_q_alpha) off and on.
+class UpdateAllocation : public ::testing::TestWithParam<std::tuple<std::string, float>> {};
 
 TEST_P(UpdateAllocation, GradientUpdateAllocatesNothingAfterWarmUp) {
+  const auto& [name, bc_q_alpha] = GetParam();
   const int obs_dim = 18, act_dim = 2;
   AgentConfig config;
   config.actor_hidden = config.critic_hidden = {128, 128};
@@ -74,7 +78,8 @@ TEST_P(UpdateAllocation, GradientUpdateAllocatesNothingAfterWarmUp) {
   config.batch_size = 128;
   config.lambda_bc = 1.0f;
   config.epsilon = 0.0f;
-  const Algorithm& algo = find_algorithm(GetParam());
+  config.bc_q_alpha = bc_q_alpha;
+  const Algorithm& algo = find_algorithm(name);
   auto agent = algo.make(obs_dim, act_dim, config, 5);
   ReplayBuffer prior(obs_dim, act_dim, 512), online(obs_dim, act_dim, 512);
   Rng data_rng(6);
@@ -97,15 +102,16 @@ TEST_P(UpdateAllocation, GradientUpdateAllocatesNothingAfterWarmUp) {
   train_step();  // sizes every buffer
   test::start_counting_allocations();
   for (int i = 0; i < 3; ++i) train_step();
-  EXPECT_EQ(test::stop_counting_allocations(), 0u) << GetParam();
+  EXPECT_EQ(test::stop_counting_allocations(), 0u) << name;
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryAlgorithm, UpdateAllocation, ::testing::ValuesIn(algo_names()),
+INSTANTIATE_TEST_SUITE_P(EveryAlgorithm, UpdateAllocation,
+                         ::testing::Combine(::testing::ValuesIn(algo_names()), ::testing::Values(0.0f, 2.5f)),
                          [](const auto& info) {
-                           std::string name = info.param;
+                           std::string name = std::get<0>(info.param);
                            for (char& c : name)
                              if (c == '-') c = '_';
-                           return name;
+                           return name + (std::get<1>(info.param) > 0 ? "_q_normalised" : "");
                          });
 
 // The counter itself must see allocations, or the tests above prove nothing.

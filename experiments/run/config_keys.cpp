@@ -83,7 +83,7 @@ bool cut_in_only(const std::string& scenario) { return scenario == "cut-in"; }
 template <typename T, typename Holder>
 ConfigKey key(std::string name, T Holder::*field, Bounds bounds, std::string doc,
               bool (*for_scenario)(const std::string&) = nullptr) {
-  ConfigKey k{name, part_of<Holder>(), type_name<T>(), bounds, std::move(doc), for_scenario, {}, {}};
+  ConfigKey k{name, part_of<Holder>(), type_name<T>(), bounds, std::move(doc), for_scenario, {}, {}, {}};
   k.read = [name, field, bounds](const nlohmann::json& v, RunConfig& config) {
     const T x = typed<T>(name, v);
     check_bounds(name, bounds, x, v);
@@ -93,12 +93,20 @@ ConfigKey key(std::string name, T Holder::*field, Bounds bounds, std::string doc
   return k;
 }
 
+// A row a config may leave out; its field then holds `neutral` (ConfigKey::set_neutral).
+template <typename T, typename Holder>
+ConfigKey optional_key(std::string name, T Holder::*field, Bounds bounds, T neutral, std::string doc) {
+  ConfigKey k = key(std::move(name), field, bounds, std::move(doc));
+  k.set_neutral = [field, neutral](RunConfig& config) { holder<Holder>(config).*field = neutral; };
+  return k;
+}
+
 // A row whose value is one of a few names.
 ConfigKey choice_key(std::string name, std::string ScenarioSettings::*field, const std::vector<std::string>& choices,
                      std::string doc) {
   std::string list;
   for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
-  ConfigKey k{name, ConfigPart::kScenario, "one of " + list, kAny, std::move(doc), driving, {}, {}};
+  ConfigKey k{name, ConfigPart::kScenario, "one of " + list, kAny, std::move(doc), driving, {}, {}, {}};
   k.read = [name, field, choices, list](const nlohmann::json& v, RunConfig& config) {
     if (!v.is_string() || std::find(choices.begin(), choices.end(), v.get<std::string>()) == choices.end())
       reject(name, "expects one of " + list + ", got " + v.dump());
@@ -163,6 +171,9 @@ const std::vector<ConfigKey>& config_keys() {
       key("lambda_bc", &AgentConfig::lambda_bc, kNonNegative, "CoL's imitation weight λ_BC"),
       key("epsilon", &AgentConfig::epsilon, kAny,
           "RAPID-RL's reward threshold ε, in the scenario's reward units (docs/scenarios.md)"),
+      optional_key("bc_q_alpha", &AgentConfig::bc_q_alpha, kNonNegative, 0.0f,
+                   "TD3+BC's α: an algorithm with an imitation term scales its actor loss's Q term by "
+                   "λ = α / (mean absolute Q(s, π(s)) over the batch); absent or 0: off (no scaling)"),
       key("steps", &RunConfig::steps, kPositive, "environment decisions of training"),
       key("warmup_steps", &RunConfig::warmup_steps, kNonNegative,
           "decisions of uniform-random actions, without updates, before learning starts"),

@@ -70,8 +70,16 @@ struct ConfigKey {
   std::function<void(const nlohmann::json& value, RunConfig& config)> read;
   // The key's value in `config`, as JSON.
   std::function<nlohmann::json(const RunConfig& config)> write;
+  // Null for a required key. For an optional one, a config may leave the key out, and then this
+  // puts the key's neutral value in its field: one that changes nothing (bc_q_alpha 0: off) or
+  // says the key was not given (return_horizon 0, outside its bounds: the algorithm that needs it
+  // refuses to run). A key left out stays out of the resolved config, so adding an optional key
+  // changes no existing config hash. (Scenario keys may be left out too, and then hold the
+  // scenario's built-in value: RunConfig::scenario.)
+  std::function<void(RunConfig& config)> set_neutral;
 
   bool applies_to(const std::string& scenario) const { return for_scenario == nullptr || for_scenario(scenario); }
+  bool optional() const { return static_cast<bool>(set_neutral); }
   // The type and bounds as one phrase: "integer, positive", "list of integers, each positive".
   std::string accepts() const;
 };

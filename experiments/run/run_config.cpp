@@ -96,10 +96,12 @@ RunConfig run_config_from_json(const nlohmann::json& j, const std::string& scena
                                const std::vector<ConfigKey>& keys) {
   if (!j.is_object()) throw std::invalid_argument("config must be a JSON object");
   for (const ConfigKey& key : keys)
-    if (key.part != ConfigPart::kScenario && key.applies_to(scenario) && !j.contains(key.name))
+    if (key.part != ConfigPart::kScenario && !key.optional() && key.applies_to(scenario) && !j.contains(key.name))
       throw std::invalid_argument("config is missing key '" + key.name + "'");
   RunConfig config;
   if (is_driving_scenario(scenario)) config.scenario = default_scenario_settings(scenario);
+  for (const ConfigKey& key : keys)
+    if (key.optional()) key.set_neutral(config);
   for (const auto& [name, value] : j.items()) key_of(name, scenario, keys).read(value, config);
   if (is_driving_scenario(scenario)) {
     try {

@@ -43,8 +43,9 @@ void parse_set_option(const std::string& assignment, nlohmann::json& overrides);
 nlohmann::json resolve_config(const std::string& scenario, const std::string& profile,
                               const nlohmann::json& grid_overrides, const nlohmann::json& set_overrides);
 
-// Converts a config of `scenario`: it must have every key of that scenario (scenario keys may be
-// left out) and no other, each with a valid value. Throws std::invalid_argument naming the key.
+// Converts a config of `scenario`: it must have every key of that scenario (scenario keys and
+// optional keys may be left out) and no other, each with a valid value. Throws
+// std::invalid_argument naming the key.
 RunConfig run_config_from_json(const nlohmann::json& j, const std::string& scenario,
                                const std::vector<ConfigKey>& keys = config_keys());
 
