@@ -88,14 +88,6 @@ CellSummary summarize_cell(const SweepFolder& folder, const std::vector<const Sw
   return cell;
 }
 
-// The part of `point` an algorithm reads: the point of its cell in a row at `point`.
-AxisPoint read_part(const AxisPoint& point, const Algorithm& algo) {
-  AxisPoint out;
-  for (const auto& entry : point)
-    if (algo.reads(entry.first)) out.push_back(entry);
-  return out;
-}
-
 // A table row per scenario × dataset × point of every axis some algorithm of the grid reads.
 void build_rows(Summary& s) {
   const std::vector<std::string> algos = ordered_algos(s.grid);
@@ -113,7 +105,8 @@ void build_rows(Summary& s) {
         for (const std::string& algo : algos) {
           const Algorithm& a = find_algorithm(algo);
           const std::string cell_dataset = a.uses_prior ? dataset : "";
-          const AxisPoint cell_point = read_part(point, a);
+          // The point of the algorithm's cell in this row: the part of the row's point it reads.
+          const AxisPoint cell_point = read_part(point, [&](const std::string& k) { return a.reads(k); });
           for (std::size_t i = 0; i < s.cells.size(); ++i) {
             const CellSummary& c = s.cells[i];
             if (c.scenario != scenario || c.dataset != cell_dataset || c.algo != algo || c.axis != cell_point) continue;

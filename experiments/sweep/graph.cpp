@@ -37,12 +37,7 @@ std::string SweepJob::id() const {
          "/seed" + std::to_string(seed);
 }
 
-AxisPoint SweepJob::reference_point() const {
-  AxisPoint out;
-  for (const auto& entry : axis)
-    if (reference_reads(entry.first)) out.push_back(entry);
-  return out;
-}
+AxisPoint SweepJob::reference_point() const { return read_part(axis, reference_reads); }
 
 std::string datasets_root(const AxisPoint& reference_point) {
   return std::string(sweep_files::kDatasets) + point_segment(reference_point);

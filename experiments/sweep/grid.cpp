@@ -449,6 +449,13 @@ std::vector<AxisPoint> axis_points(const Grid& grid, const std::string& scenario
   return points;
 }
 
+AxisPoint read_part(const AxisPoint& point, const std::function<bool(const std::string& key)>& reads) {
+  AxisPoint out;
+  for (const auto& entry : point)
+    if (reads(entry.first)) out.push_back(entry);
+  return out;
+}
+
 bool reference_reads(const std::string& key) { return !is_algorithm_key(key); }
 
 std::string axis_value_label(const json& value) {

@@ -101,6 +101,9 @@ nlohmann::json cell_config(const Grid& grid, const std::string& scenario, const 
 std::vector<AxisPoint> axis_points(const Grid& grid, const std::string& scenario,
                                    const std::function<bool(const std::string& key)>& reads);
 
+// The entries of `point` whose key `reads` accepts: the part of a row's point one job reads.
+AxisPoint read_part(const AxisPoint& point, const std::function<bool(const std::string& key)>& reads);
+
 // Whether the reference agent and dataset jobs read `key`: every key no algorithm owns.
 bool reference_reads(const std::string& key);
 
