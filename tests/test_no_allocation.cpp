@@ -34,8 +34,9 @@ TEST(NoAllocation, NetworkForwardBackwardAdamAfterWarmUp) {
   EXPECT_EQ(test::stop_counting_allocations(), 0u);
 }
 
+// The online buffer keeps mean returns over 20 decisions (as an algorithm's that imitates by mean returns would).
 TEST(NoAllocation, ReplayInsertAndSample) {
-  ReplayBuffer prior(19, 2, 1000), online(19, 2, 1000);
+  ReplayBuffer prior(19, 2, 1000), online(19, 2, 1000, /*return_window=*/20);
   const Vec s = Vec::Random(19), a = Vec::Random(2);
   for (int i = 0; i < 10; ++i) prior.add(s, a, 0.5f, s, false, false);
   Batch batch;
@@ -52,7 +53,7 @@ TEST(NoAllocation, ReplayInsertAndSample) {
 }
 
 TEST(NoAllocation, ReplayInsertionWrapsAroundWithoutAllocating) {
-  ReplayBuffer buffer(18, 2, 64);
+  ReplayBuffer buffer(18, 2, 64, /*return_window=*/20);
   const Vec s = Vec::Random(18), a = Vec::Random(2);
   buffer.add(s, a, 0.0f, s, false, false);
   test::start_counting_allocations();
