@@ -8,6 +8,7 @@
 #include "algos/registry.hpp"
 #include "envs/env.hpp"
 #include "experiments/run/dataset_build.hpp"
+#include "experiments/run/job.hpp"
 #include "experiments/run/json_input.hpp"
 #include "experiments/run/run_config.hpp"
 
@@ -223,6 +224,21 @@ void check_overrides(const GridChecker& check, const Grid& grid) {
   }
 }
 
+// Every algorithm must find the keys it needs in each scenario's resolved config (rapid-rl-return:
+// return_horizon), or every one of its jobs would fail.
+void check_algorithms_fit(const GridChecker& check, const Grid& grid) {
+  for (const std::string& scenario : grid.scenarios) {
+    const RunConfig config = run_config_from_json(cell_config(grid, scenario), scenario);
+    for (const std::string& algo : grid.algos) {
+      try {
+        check_config_fits(algo, config);
+      } catch (const std::invalid_argument& e) {
+        check.fail("algos", e.what());
+      }
+    }
+  }
+}
+
 }  // namespace
 
 Grid parse_grid(const json& doc, const std::string& label) {
@@ -261,6 +277,7 @@ Grid parse_grid(const json& doc, const std::string& label) {
     grid.jobs = static_cast<int>(j);
   }
   check_overrides(check, grid);
+  check_algorithms_fit(check, grid);
   parse_reference_steps(check, check.object_or_empty(doc, "reference"), grid);
 
   grid.normalized = doc;

@@ -45,6 +45,16 @@ TEST(Grid, ValidGridGetsDefaults) {
   EXPECT_EQ(grid_overrides(g, "pendulum"), (json{{"steps", 1000}}));
 }
 
+TEST(Grid, AnAlgorithmFindsTheKeysItNeedsInConfigOrScenarioConfig) {
+  json doc = valid_grid();
+  doc["algos"] = {"rapid-rl-return", "ddpg"};
+  doc["config"]["return_horizon"] = 20;
+  EXPECT_NO_THROW(parse_grid(doc, "g.json"));
+  doc["config"].erase("return_horizon");
+  doc["scenario_config"] = {{"pendulum", {{"return_horizon", 10}}}};
+  EXPECT_NO_THROW(parse_grid(doc, "g.json"));
+}
+
 TEST(Grid, ScenarioConfigOverridesConfig) {
   json doc = valid_grid();
   doc["scenario_config"] = {{"pendulum", {{"steps", 500}, {"batch_size", 32}}}};
@@ -94,6 +104,8 @@ TEST(Grid, EachMalformedGridNamesItsField) {
        "grid g.json: seeds: the grid expands to "},
       {"name too long for a folder", [](json& g) { g["name"] = std::string(101, 'n'); },
        "grid g.json: name: is 101 characters long; at most 100"},
+      {"an algorithm without a key it needs", [](json& g) { g["algos"] = {"ddpg", "rapid-rl-return"}; },
+       "grid g.json: algos: algorithm 'rapid-rl-return' needs config key 'return_horizon'"},
   };
   for (const Case& c : cases) {
     json doc = valid_grid();
