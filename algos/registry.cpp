@@ -28,7 +28,7 @@ const std::vector<Algorithm>& algorithms() {
       {"ddpg", "DDPG", false, make<ActorCritic>, {}},
       // Not in the paper: RAPID-RL weighting by the mean reward over the next decisions.
       {"rapid-rl-return", "RAPID-RL (return)", true, make<RapidRlReturn>, {"epsilon", "return_horizon", "bc_q_alpha"},
-       /*uses_returns=*/true},
+       /*uses_returns=*/true, /*in_paper=*/false},
   };
   return table;
 }

@@ -28,6 +28,9 @@ struct Algorithm {
   // `return_horizon` decisions of its episode: a run builds its buffers with that window, and
   // needs the key and a prior dataset made of episodes.
   bool uses_returns = false;
+  // One of the paper's five algorithms (Table I's columns): the claims check and the probability
+  // that RAPID-RL beats each baseline concern these only.
+  bool in_paper = true;
 
   bool reads(const std::string& key) const;
   // The window its buffers compute Batch::ret over: return_horizon for an algorithm that uses

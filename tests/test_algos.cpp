@@ -213,6 +213,7 @@ TEST(Registry, RowsInThePapersColumnOrderWithPriorUseAndUnknownNames) {
   for (const char* n : {"rlpd", "col-prior", "col-all", "rapid-rl", "rapid-rl-return"})
     EXPECT_TRUE(find_algorithm(n).uses_prior) << n;
   for (const Algorithm& a : algorithms()) {
+    EXPECT_EQ(a.in_paper, a.name != "rapid-rl-return") << a.name;
     EXPECT_EQ(a.uses_returns, a.name == "rapid-rl-return") << a.name;
   }
   EXPECT_EQ(find_algorithm("col-prior").display_name, "CoL-prior");
