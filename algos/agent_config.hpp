@@ -20,6 +20,9 @@ struct AgentConfig {
   float lambda_bc{};
   float epsilon{};   // RAPID-RL's reward threshold ε
   float bc_q_alpha{};  // TD3+BC's α of the Q term's scale λ; 0: off (an optional key, absent means 0)
+  // RAPID-RL (return)'s window n in decisions; 0: not given (an optional key that rapid-rl-return
+  // needs; algos/registry.hpp, Algorithm::return_window).
+  int return_horizon{};
 };
 
 }  // namespace rapid

@@ -6,6 +6,7 @@
 #include "algos/col_all.hpp"
 #include "algos/col_prior.hpp"
 #include "algos/rapid_rl.hpp"
+#include "algos/rapid_rl_return.hpp"
 
 namespace rapid {
 
@@ -25,6 +26,9 @@ const std::vector<Algorithm>& algorithms() {
       {"col-prior", "CoL-prior", true, make<ColPrior>, {"lambda_bc", "bc_q_alpha"}},
       {"col-all", "CoL-all", true, make<ColAll>, {"lambda_bc", "bc_q_alpha"}},
       {"ddpg", "DDPG", false, make<ActorCritic>, {}},
+      // Not in the paper: RAPID-RL weighting by the mean reward over the next decisions.
+      {"rapid-rl-return", "RAPID-RL (return)", true, make<RapidRlReturn>, {"epsilon", "return_horizon", "bc_q_alpha"},
+       /*uses_returns=*/true, /*in_paper=*/false},
   };
   return table;
 }
@@ -32,6 +36,15 @@ const std::vector<Algorithm>& algorithms() {
 bool Algorithm::reads(const std::string& key) const {
   if (std::find(own_keys.begin(), own_keys.end(), key) != own_keys.end()) return true;
   return !is_algorithm_key(key);
+}
+
+int Algorithm::return_window(const AgentConfig& config) const {
+  if (!uses_returns) return 1;
+  if (config.return_horizon < 1)
+    throw std::invalid_argument("algorithm '" + name +
+                                "' needs config key 'return_horizon' (decisions of the return window; e.g. --set "
+                                "return_horizon=20)");
+  return config.return_horizon;
 }
 
 bool is_algorithm_key(const std::string& key) {

@@ -24,11 +24,22 @@ struct Algorithm {
   // grid axis over such a key does not duplicate the jobs of the algorithms that ignore it
   // (tests/test_algos.cpp checks that changing the key leaves their updates unchanged).
   std::vector<std::string> own_keys;
+  // Its imitation weights read Batch::ret, each transition's mean reward over the next
+  // `return_horizon` decisions of its episode: a run builds its buffers with that window, and
+  // needs the key and a prior dataset made of episodes.
+  bool uses_returns = false;
+  // One of the paper's five algorithms (Table I's columns): the claims check and the probability
+  // that RAPID-RL beats each baseline concern these only.
+  bool in_paper = true;
 
   bool reads(const std::string& key) const;
+  // The window its buffers compute Batch::ret over: return_horizon for an algorithm that uses
+  // returns, 1 (ret = r, at no cost) for the others. Throws std::invalid_argument("algorithm 'A'
+  // needs config key 'return_horizon' (…)") when the key was not given.
+  int return_window(const AgentConfig& config) const;
 };
 
-// In the order of the paper's Table I columns.
+// In the order of the paper's Table I columns, then the algorithms the paper does not have.
 const std::vector<Algorithm>& algorithms();
 std::vector<std::string> algo_names();
 

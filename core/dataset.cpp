@@ -26,6 +26,12 @@ void Dataset::check_shapes() const {
                                 " rows, 'observations' has " + std::to_string(observations.rows()));
 }
 
+bool Dataset::has_episode_ends() const {
+  for (std::size_t i = 0; i < size(); ++i)
+    if (ends_episode(i)) return true;
+  return false;
+}
+
 DatasetBuilder::DatasetBuilder(int obs_dim, int act_dim) : obs_dim_(obs_dim), act_dim_(act_dim) {
   if (obs_dim <= 0 || act_dim <= 0) throw std::invalid_argument("DatasetBuilder: dimensions must be positive");
 }
@@ -91,10 +97,10 @@ Dataset dataset_from_buffer(const ReplayBuffer& buffer, Metadata metadata) {
   return d;
 }
 
-ReplayBuffer make_prior_buffer(const Dataset& dataset) {
+ReplayBuffer make_prior_buffer(const Dataset& dataset, int return_window) {
   dataset.check_shapes();
   if (dataset.empty()) throw std::invalid_argument("make_prior_buffer: the dataset holds no transitions");
-  ReplayBuffer buffer(dataset.obs_dim(), dataset.act_dim(), dataset.size());
+  ReplayBuffer buffer(dataset.obs_dim(), dataset.act_dim(), dataset.size(), return_window);
   for (std::size_t i = 0; i < dataset.size(); ++i) {
     const auto c = static_cast<Eigen::Index>(i);
     buffer.add(dataset.observations.col(c), dataset.actions.col(c), dataset.rewards[c],

@@ -56,6 +56,8 @@ struct Dataset {
   int act_dim() const { return static_cast<int>(actions.rows()); }
   // Transition i is the last of its episode.
   bool ends_episode(std::size_t i) const { return terminals[i] || timeouts[i]; }
+  // Some transition ends an episode: the data is episodes, not one unbroken stream.
+  bool has_episode_ends() const;
 
   // Throws std::invalid_argument naming the first array whose size disagrees with the others.
   void check_shapes() const;
@@ -89,7 +91,10 @@ class DatasetBuilder {
 Dataset dataset_from_buffer(const ReplayBuffer& buffer, Metadata metadata = {});
 
 // A replay buffer of capacity N holding exactly the dataset, in order: the prior buffer of
-// RLPD / RAPID-RL. Throws std::invalid_argument for an empty dataset.
-ReplayBuffer make_prior_buffer(const Dataset& dataset);
+// RLPD / RAPID-RL. Its transitions go in through ReplayBuffer::add, so each one's mean reward
+// over `return_window` decisions (Batch::ret) is computed exactly as for online data; a trailing
+// episode without an end is cut where the data stops. Throws std::invalid_argument for an empty
+// dataset.
+ReplayBuffer make_prior_buffer(const Dataset& dataset, int return_window = 1);
 
 }  // namespace rapid

@@ -1,6 +1,8 @@
 #include "core/replay_buffer.hpp"
 
+#include <algorithm>
 #include <stdexcept>
+#include <string>
 
 namespace rapid {
 
@@ -9,19 +11,37 @@ void Batch::resize(int obs_dim, int act_dim, int batch_size) {
   next_obs.resize(obs_dim, batch_size);
   act.resize(act_dim, batch_size);
   rew.resize(batch_size);
+  ret.resize(batch_size);
   not_terminal.resize(batch_size);
 }
 
-ReplayBuffer::ReplayBuffer(int obs_dim, int act_dim, std::size_t capacity)
+ReplayBuffer::ReplayBuffer(int obs_dim, int act_dim, std::size_t capacity, int return_window)
     : obs_(obs_dim, capacity),
       act_(act_dim, capacity),
       next_obs_(obs_dim, capacity),
       rew_(capacity),
       terminal_(capacity),
       timeout_(capacity),
+      ret_sum_(capacity),
+      ret_count_(capacity),
+      return_window_(return_window),
       capacity_(capacity) {
   if (obs_dim <= 0 || act_dim <= 0 || capacity == 0)
     throw std::invalid_argument("ReplayBuffer: dimensions and capacity must be positive");
+  if (return_window < 1)
+    throw std::invalid_argument("ReplayBuffer: the return window must be at least 1, got " + std::to_string(return_window));
+}
+
+void ReplayBuffer::extend_open_windows(Eigen::Index s, float reward) {
+  // The j-th transition before this one is of the same episode while j ≤ episode_length_, and its
+  // window is still open while j < window. Going back capacity or more slots would reach this
+  // slot again, or transitions already overwritten.
+  const std::size_t back = std::min({static_cast<std::size_t>(return_window_ - 1), episode_length_, capacity_ - 1});
+  for (std::size_t j = 1; j <= back; ++j) {
+    const auto p = static_cast<Eigen::Index>((static_cast<std::size_t>(s) + capacity_ - j) % capacity_);
+    ret_sum_[p] += reward;
+    ++ret_count_[static_cast<std::size_t>(p)];
+  }
 }
 
 void ReplayBuffer::add(const ConstVecRef& obs, const ConstVecRef& act, float reward,
@@ -33,6 +53,10 @@ void ReplayBuffer::add(const ConstVecRef& obs, const ConstVecRef& act, float rew
   rew_[s] = reward;
   terminal_[s] = terminal ? 1.0f : 0.0f;
   timeout_[s] = timeout ? 1.0f : 0.0f;
+  ret_sum_[s] = reward;
+  ret_count_[static_cast<std::size_t>(s)] = 1;
+  extend_open_windows(s, reward);
+  episode_length_ = terminal || timeout ? 0 : episode_length_ + 1;
   next_ = (next_ + 1) % capacity_;
   if (size_ < capacity_) ++size_;
 }
@@ -42,6 +66,7 @@ void ReplayBuffer::copy_slot(Eigen::Index s, Batch& batch, int col) const {
   batch.act.col(col) = act_.col(s);
   batch.next_obs.col(col) = next_obs_.col(s);
   batch.rew[col] = rew_[s];
+  batch.ret[col] = mean_return_at(s);
   batch.not_terminal[col] = 1.0f - terminal_[s];
 }
 

@@ -1,9 +1,11 @@
-// Replay storage: a fixed-capacity ring buffer of transitions (s, a, r, s', terminal, timeout),
+// Replay storage: a fixed-capacity ring buffer of transitions (s, a, r, s', terminal, timeout)
+// that also keeps each transition's mean reward over a window of the decisions that follow it,
 // uniform minibatch sampling into preallocated matrices, and the symmetric sampler that draws
 // half of every batch from a prior buffer and half from the online one (RLPD, RAPID-RL).
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "core/rng.hpp"
 #include "core/tensor.hpp"
@@ -14,6 +16,9 @@ namespace rapid {
 struct Batch {
   Mat obs, act, next_obs;
   RowVec rew;
+  // Ḡ_t = (1/k) Σ_{j<k} r_{t+j}: the mean reward over the buffer's return window of decisions
+  // from this one on, k = min(window, decisions left in its episode); see ReplayBuffer.
+  RowVec ret;
   RowVec not_terminal;  // 1 − terminal: the critic target bootstraps through timeouts, not terminals
   int prior_count = 0;
 
@@ -21,10 +26,18 @@ struct Batch {
   int size() const { return static_cast<int>(obs.cols()); }
 };
 
+// Transitions are added in the order they happened, episode after episode; a terminal or a
+// timeout ends an episode. Each transition t keeps Ḡ_t (Batch::ret), the mean of its own reward
+// and those of the next decisions of its episode, up to `return_window` rewards in all: the
+// window is cut at the episode's end, so a collision within it pulls Ḡ_t down. Ḡ is built as the
+// transitions arrive: adding one adds its reward to the windows still open before it in its
+// episode (at most window − 1 of them; O(window), no allocation). A transition whose window is
+// not complete yet (among the last window − 1 of an episode that has not ended, or of data that
+// stops mid-episode) has the mean of the rewards it has so far. Window 1: Ḡ_t = r_t.
 class ReplayBuffer {
  public:
   ReplayBuffer() = default;
-  ReplayBuffer(int obs_dim, int act_dim, std::size_t capacity);
+  ReplayBuffer(int obs_dim, int act_dim, std::size_t capacity, int return_window = 1);
 
   // Stores one transition, overwriting the oldest once full. Allocates nothing.
   void add(const ConstVecRef& obs, const ConstVecRef& act, float reward, const ConstVecRef& next_obs,
@@ -39,6 +52,7 @@ class ReplayBuffer {
   bool empty() const { return size_ == 0; }
   int obs_dim() const { return static_cast<int>(obs_.rows()); }
   int act_dim() const { return static_cast<int>(act_.rows()); }
+  int return_window() const { return return_window_; }
 
   // Read access by storage slot (for dataset export); slot = (oldest + i) % capacity.
   auto obs(std::size_t i) const { return obs_.col(slot(i)); }
@@ -47,6 +61,7 @@ class ReplayBuffer {
   float reward(std::size_t i) const { return rew_[slot(i)]; }
   bool terminal(std::size_t i) const { return terminal_[slot(i)] != 0.0f; }
   bool timeout(std::size_t i) const { return timeout_[slot(i)] != 0.0f; }
+  float mean_return(std::size_t i) const { return mean_return_at(slot(i)); }
 
  private:
   Eigen::Index slot(std::size_t i) const {
@@ -54,9 +69,18 @@ class ReplayBuffer {
     return static_cast<Eigen::Index>((oldest + i) % capacity_);
   }
   void copy_slot(Eigen::Index s, Batch& batch, int col) const;
+  float mean_return_at(Eigen::Index s) const { return ret_sum_[s] / static_cast<float>(ret_count_[s]); }
+  // Adds `reward`, that of the transition just stored in slot `s`, to the open windows before it.
+  void extend_open_windows(Eigen::Index s, float reward);
 
   Mat obs_, act_, next_obs_;
   Vec rew_, terminal_, timeout_;
+  // Per slot: the sum and the number of the rewards in its return window so far.
+  Vec ret_sum_;
+  std::vector<int> ret_count_;
+  int return_window_ = 1;
+  // Transitions of the current (unended) episode stored before the next one.
+  std::size_t episode_length_ = 0;
   std::size_t capacity_ = 0, size_ = 0, next_ = 0;
 };
 

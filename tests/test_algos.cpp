@@ -30,7 +30,8 @@ AgentConfig small_config() {
   return c;
 }
 
-// A hand-made batch: first half "prior", rewards spread around ε = −0.15.
+// A hand-made batch: first half "prior", rewards and mean returns spread around ε = −0.15, on
+// opposite sides of it in several columns.
 Batch hand_made_batch() {
   Batch b;
   b.resize(kObs, kAct, kBatch);
@@ -39,6 +40,7 @@ Batch hand_made_batch() {
   for (int i = 0; i < b.next_obs.size(); ++i) b.next_obs.data()[i] = static_cast<float>(rng.uniform(-1, 1));
   for (int i = 0; i < b.act.size(); ++i) b.act.data()[i] = static_cast<float>(rng.uniform(-1, 1));
   b.rew << -1.0f, -0.15f, 0.2f, 0.9f, -0.5f, 0.05f, -0.16f, 0.6f;
+  b.ret << 0.4f, 0.3f, -0.9f, -0.15f, 0.1f, -0.6f, 0.5f, 0.7f;
   b.not_terminal.setOnes();
   b.prior_count = kBatch / 2;
   return b;
@@ -100,7 +102,7 @@ TEST_P(ActorLossGradient, AgreesWithFiniteDifferences) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllAlgorithms, ActorLossGradient,
-                         ::testing::Combine(::testing::Values("ddpg", "rlpd", "col-prior", "col-all", "rapid-rl"),
+                         ::testing::Combine(::testing::Values("ddpg", "rlpd", "col-prior", "col-all", "rapid-rl", "rapid-rl-return"),
                                             ::testing::Values(0.0f, 2.5f)),
                          [](const auto& info) {
                            std::string n = std::get<0>(info.param);
@@ -140,6 +142,51 @@ TEST(RapidRl, ImitatesOnlyAboveThresholdWeightedByTheMargin) {
   EXPECT_NEAR(bc_part("rapid-rl", moved) - bc_part("rapid-rl", batch), 1.05 * delta_sq / kBatch, 1e-5);
 }
 
+// RAPID-RL (return) is RAPID-RL with the mean return Ḡ in place of the reward: it imitates where Ḡ
+// beats ε, whatever the step's own reward, and only there.
+TEST(RapidRlReturn, WeightsByTheMeanReturnNotTheReward) {
+  const Batch batch = hand_made_batch();
+  const Mat pi = agent("rapid-rl-return")->actor().forward(batch.obs);
+  double expected = 0;
+  for (int i = 0; i < kBatch; ++i)
+    expected += std::max(0.0f, batch.ret[i] - (-0.15f)) * (pi.col(i) - batch.act.col(i)).squaredNorm();
+  EXPECT_NEAR(bc_part("rapid-rl-return", batch), expected / kBatch, 1e-5);
+
+  for (int col : {2, 3, 5}) {  // r > ε but Ḡ ≤ ε: not imitated
+    Batch moved = batch;
+    moved.act.col(col).array() += 0.7f;
+    EXPECT_NEAR(bc_part("rapid-rl-return", moved), bc_part("rapid-rl-return", batch), 1e-6) << "column " << col;
+  }
+  for (int col : {0, 4, 6}) {  // r ≤ ε but Ḡ > ε: imitated
+    Batch moved = batch;
+    moved.act.col(col).array() += 0.7f;
+    EXPECT_GT(std::abs(bc_part("rapid-rl-return", moved) - bc_part("rapid-rl-return", batch)), 1e-4) << "column " << col;
+  }
+  // With Ḡ = r (a window of one decision) it is RAPID-RL, and RAPID-RL does not read Ḡ.
+  Batch same = batch;
+  same.ret = same.rew;
+  EXPECT_EQ(agent("rapid-rl-return")->compute_actor_gradient(same), agent("rapid-rl")->compute_actor_gradient(batch));
+  EXPECT_EQ(agent("rapid-rl")->compute_actor_gradient(same), agent("rapid-rl")->compute_actor_gradient(batch));
+}
+
+// The return window comes from return_horizon for the algorithm that uses returns, and there is no
+// hidden default; every other algorithm's buffers keep a window of 1.
+TEST(RapidRlReturn, NeedsReturnHorizonTheOthersUseAWindowOfOne) {
+  AgentConfig config = small_config();
+  try {
+    find_algorithm("rapid-rl-return").return_window(config);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(),
+                 "algorithm 'rapid-rl-return' needs config key 'return_horizon' (decisions of the return window; e.g. "
+                 "--set return_horizon=20)");
+  }
+  config.return_horizon = 20;
+  EXPECT_EQ(find_algorithm("rapid-rl-return").return_window(config), 20);
+  for (const Algorithm& a : algorithms())
+    EXPECT_EQ(a.return_window(config), a.name == "rapid-rl-return" ? 20 : 1) << a.name;
+}
+
 TEST(ColPrior, BcTermIgnoresTheOnlineHalf) {
   const Batch batch = hand_made_batch();
   Batch online_moved = batch, prior_moved = batch;
@@ -161,10 +208,16 @@ TEST(ColAll, BcTermCoversTheWholeBatch) {
 }
 
 TEST(Registry, RowsInThePapersColumnOrderWithPriorUseAndUnknownNames) {
-  EXPECT_EQ(algo_names(), (std::vector<std::string>{"rapid-rl", "rlpd", "col-prior", "col-all", "ddpg"}));
+  EXPECT_EQ(algo_names(), (std::vector<std::string>{"rapid-rl", "rlpd", "col-prior", "col-all", "ddpg", "rapid-rl-return"}));
   EXPECT_FALSE(find_algorithm("ddpg").uses_prior);
-  for (const char* n : {"rlpd", "col-prior", "col-all", "rapid-rl"}) EXPECT_TRUE(find_algorithm(n).uses_prior) << n;
+  for (const char* n : {"rlpd", "col-prior", "col-all", "rapid-rl", "rapid-rl-return"})
+    EXPECT_TRUE(find_algorithm(n).uses_prior) << n;
+  for (const Algorithm& a : algorithms()) {
+    EXPECT_EQ(a.in_paper, a.name != "rapid-rl-return") << a.name;
+    EXPECT_EQ(a.uses_returns, a.name == "rapid-rl-return") << a.name;
+  }
   EXPECT_EQ(find_algorithm("col-prior").display_name, "CoL-prior");
+  EXPECT_EQ(find_algorithm("rapid-rl-return").display_name, "RAPID-RL (return)");
   try {
     agent("sac");
     FAIL();
@@ -173,24 +226,51 @@ TEST(Registry, RowsInThePapersColumnOrderWithPriorUseAndUnknownNames) {
   }
 }
 
+namespace {
+// A batch as training draws it for `algo` under `config`: transitions in episodes (a terminal or a
+// timeout every few), stored in buffers with the algorithm's return window, sampled the same way
+// every time. So a key that acts through the buffers (return_horizon) shows here like one that
+// acts through the loss.
+Batch sampled_batch(const Algorithm& algo, const AgentConfig& config) {
+  const int window = algo.return_window(config);
+  ReplayBuffer prior(kObs, kAct, 64, window), online(kObs, kAct, 64, window);
+  Rng rng(11);
+  Vec s(kObs), a(kAct), s2(kObs);
+  for (int i = 0; i < 64; ++i) {
+    for (Vec* v : {&s, &a, &s2})
+      for (Eigen::Index k = 0; k < v->size(); ++k) (*v)[k] = static_cast<float>(rng.uniform(-1, 1));
+    const float r = static_cast<float>(rng.uniform(-1, 1));
+    prior.add(s, a, r, s2, i % 13 == 12, i % 9 == 8);
+    online.add(s, a, -r, s2, i % 11 == 10, false);
+  }
+  Batch batch;
+  batch.resize(kObs, kAct, kBatch);
+  Rng sample_rng(12);
+  SymmetricSampler(algo.uses_prior ? &prior : nullptr, &online).sample(sample_rng, batch);
+  return batch;
+}
+}  // namespace
+
 // A key an algorithm does not list among its own keys must not change what it computes: sweeps
 // share its jobs across the values of an axis over that key (docs/sweeps.md §Axes).
 TEST(Registry, AlgorithmsIgnoreTheKeysOfOtherAlgorithms) {
-  // Each algorithm-specific key with the AgentConfig field it sets and two values far apart.
-  const std::vector<std::pair<std::string, std::function<void(AgentConfig&, float)>>> keys = {
-      {"epsilon", [](AgentConfig& c, float x) { c.epsilon = x; }},
-      {"lambda_bc", [](AgentConfig& c, float x) { c.lambda_bc = x; }},
-      {"bc_q_alpha", [](AgentConfig& c, float x) { c.bc_q_alpha = x; }},
+  // Each algorithm-specific key with a setter of its AgentConfig field at two values far apart.
+  const std::vector<std::pair<std::string, std::function<void(AgentConfig&, bool high)>>> keys = {
+      {"epsilon", [](AgentConfig& c, bool high) { c.epsilon = high ? 5.0f : 0.01f; }},
+      {"lambda_bc", [](AgentConfig& c, bool high) { c.lambda_bc = high ? 5.0f : 0.01f; }},
+      {"bc_q_alpha", [](AgentConfig& c, bool high) { c.bc_q_alpha = high ? 5.0f : 0.01f; }},
+      {"return_horizon", [](AgentConfig& c, bool high) { c.return_horizon = high ? 20 : 1; }},
   };
   for (const auto& [key, set] : keys) EXPECT_TRUE(is_algorithm_key(key)) << key;
-  const Batch batch = hand_made_batch();
   for (const Algorithm& algo : algorithms())
     for (const auto& [key, set] : keys) {
       AgentConfig low = small_config(), high = small_config();
-      set(low, 0.01f);
-      set(high, 5.0f);
-      auto a = algo.make(kObs, kAct, low, 17), b = algo.make(kObs, kAct, high, 17);
-      const float la = a->compute_actor_gradient(batch), lb = b->compute_actor_gradient(batch);
+      low.return_horizon = high.return_horizon = 5;  // rapid-rl-return needs one
+      set(low, false);
+      set(high, true);
+      auto a = perturbed_agent(algo.name, low), b = perturbed_agent(algo.name, high);
+      const float la = a->compute_actor_gradient(sampled_batch(algo, low));
+      const float lb = b->compute_actor_gradient(sampled_batch(algo, high));
       if (algo.reads(key)) {
         EXPECT_NE(la, lb) << algo.name << " lists " << key << " but ignores it";
       } else {

@@ -173,10 +173,10 @@ TEST(DefaultConfigs, AnOptionalKeyMayBeLeftOutAndThenHoldsItsNeutralValue) {
   EXPECT_THROW(run_config_from_json(config, "pendulum", keys), std::invalid_argument);
 }
 
-// The real optional key: no config file has it, and a config resolved from a file without one
-// does not have it either, so its arrival changed no config hash; given, they are checked.
+// The real optional keys: no config file has them, and a config resolved from a file without one
+// does not have it either, so their arrival changed no config hash; given, they are checked.
 TEST(DefaultConfigs, OptionalKeysLeftOutOfAFileStayOutOfTheResolvedConfig) {
-  for (const char* name : {"bc_q_alpha"}) {
+  for (const char* name : {"bc_q_alpha", "return_horizon"}) {
     SCOPED_TRACE(name);
     ASSERT_TRUE(find_config_key(name)->optional());
     for (const auto& [p, s] : config_files()) {
@@ -186,9 +186,12 @@ TEST(DefaultConfigs, OptionalKeysLeftOutOfAFileStayOutOfTheResolvedConfig) {
   }
   const RunConfig neutral = run_config_from_json(default_config_json("merge"), "merge");
   EXPECT_EQ(neutral.agent.bc_q_alpha, 0.0f);    // off
-  const nlohmann::json given = resolve_config("merge", "short", {{"bc_q_alpha", 2.5}}, nlohmann::json());
+  EXPECT_EQ(neutral.agent.return_horizon, 0);   // not given
+  const nlohmann::json given = resolve_config("merge", "short", {{"bc_q_alpha", 2.5}}, {{"return_horizon", 20}});
   EXPECT_EQ(given["bc_q_alpha"], 2.5);
-  EXPECT_EQ(run_config_from_json(given, "merge").agent.bc_q_alpha, 2.5f);
+  EXPECT_EQ(given["return_horizon"], 20);
+  EXPECT_EQ(run_config_from_json(given, "merge").agent.return_horizon, 20);
+  EXPECT_THROW(resolve_config("merge", "short", {{"return_horizon", 0}}, nlohmann::json()), std::invalid_argument);
   EXPECT_THROW(resolve_config("merge", "short", {{"bc_q_alpha", -1}}, nlohmann::json()), std::invalid_argument);
 }
 

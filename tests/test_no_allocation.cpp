@@ -34,8 +34,9 @@ TEST(NoAllocation, NetworkForwardBackwardAdamAfterWarmUp) {
   EXPECT_EQ(test::stop_counting_allocations(), 0u);
 }
 
+// The online buffer keeps mean returns over 20 decisions (rapid-rl-return's buffers do).
 TEST(NoAllocation, ReplayInsertAndSample) {
-  ReplayBuffer prior(19, 2, 1000), online(19, 2, 1000);
+  ReplayBuffer prior(19, 2, 1000), online(19, 2, 1000, /*return_window=*/20);
   const Vec s = Vec::Random(19), a = Vec::Random(2);
   for (int i = 0; i < 10; ++i) prior.add(s, a, 0.5f, s, false, false);
   Batch batch;
@@ -52,7 +53,7 @@ TEST(NoAllocation, ReplayInsertAndSample) {
 }
 
 TEST(NoAllocation, ReplayInsertionWrapsAroundWithoutAllocating) {
-  ReplayBuffer buffer(18, 2, 64);
+  ReplayBuffer buffer(18, 2, 64, /*return_window=*/20);
   const Vec s = Vec::Random(18), a = Vec::Random(2);
   buffer.add(s, a, 0.0f, s, false, false);
   test::start_counting_allocations();
@@ -79,9 +80,11 @@ TEST_P(UpdateAllocation, GradientUpdateAllocatesNothingAfterWarmUp) {
   config.lambda_bc = 1.0f;
   config.epsilon = 0.0f;
   config.bc_q_alpha = bc_q_alpha;
+  config.return_horizon = 20;
   const Algorithm& algo = find_algorithm(name);
   auto agent = algo.make(obs_dim, act_dim, config, 5);
-  ReplayBuffer prior(obs_dim, act_dim, 512), online(obs_dim, act_dim, 512);
+  const int window = algo.return_window(config);
+  ReplayBuffer prior(obs_dim, act_dim, 512, window), online(obs_dim, act_dim, 512, window);
   Rng data_rng(6);
   for (int i = 0; i < 300; ++i) {
     const Vec s = Vec::Random(obs_dim), a = Vec::Random(act_dim), s2 = Vec::Random(obs_dim);

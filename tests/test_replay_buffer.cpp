@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <map>
+#include <string>
+#include <vector>
+
 #include "core/replay_buffer.hpp"
 
 using namespace rapid;
@@ -87,4 +91,71 @@ TEST(ReplayBuffer, EmptyBufferCannotBeSampled) {
   batch.resize(2, 1, 4);
   Rng rng(1);
   EXPECT_THROW(buf.sample_into(rng, batch, 0, 4), std::logic_error);
+}
+
+namespace {
+// Adds transitions with the given rewards and episode ends ('.' goes on, 'T' terminal, 'O' timeout).
+void add_rewards(ReplayBuffer& buf, const std::vector<float>& rewards, const std::string& ends) {
+  const Vec s = Vec::Zero(buf.obs_dim()), a = Vec::Zero(buf.act_dim());
+  for (std::size_t i = 0; i < rewards.size(); ++i) buf.add(s, a, rewards[i], s, ends[i] == 'T', ends[i] == 'O');
+}
+
+std::vector<float> mean_returns(const ReplayBuffer& buf) {
+  std::vector<float> out;
+  for (std::size_t i = 0; i < buf.size(); ++i) out.push_back(buf.mean_return(i));
+  return out;
+}
+}  // namespace
+
+// Ḡ_t is the mean of r_t … r_{t+k−1}, the window cut at the episode's end, whichever way it ends.
+TEST(ReturnWindow, MeanOverTheWindowCutAtTerminalsAndTimeouts) {
+  ReplayBuffer buf(1, 1, 100, /*return_window=*/3);
+  add_rewards(buf, {1, 2, 3, 4, 10, 20, 30, 100, 200}, "...T.O..T");
+  EXPECT_EQ(mean_returns(buf), (std::vector<float>{
+                                   (1 + 2 + 3) / 3.0f, (2 + 3 + 4) / 3.0f, (3 + 4) / 2.0f, 4,  // terminal at 4
+                                   (10 + 20) / 2.0f, 20,                                      // timeout at 20
+                                   (30 + 100 + 200) / 3.0f, (100 + 200) / 2.0f, 200}));
+  Batch batch;
+  batch.resize(1, 1, 200);
+  Rng rng(3);
+  buf.sample_into(rng, batch, 0, batch.size());
+  std::map<float, float> ret_of_reward;  // the rewards are distinct
+  for (std::size_t i = 0; i < buf.size(); ++i) ret_of_reward[buf.reward(i)] = buf.mean_return(i);
+  for (int c = 0; c < batch.size(); ++c)  // Ḡ travels with its transition
+    EXPECT_EQ(batch.ret[c], ret_of_reward.at(batch.rew[c])) << "column " << c;
+}
+
+TEST(ReturnWindow, WindowOneIsTheReward) {
+  ReplayBuffer buf(1, 1, 10);
+  EXPECT_EQ(buf.return_window(), 1);
+  add_rewards(buf, {0.3f, -1.7f, 2.5f, 0.1f}, "..T.");
+  EXPECT_EQ(mean_returns(buf), (std::vector<float>{0.3f, -1.7f, 2.5f, 0.1f}));
+}
+
+// The last transitions of an episode that has not ended (or of data that stops mid-episode) have
+// the mean of the rewards they have so far, and complete their windows as the episode goes on.
+TEST(ReturnWindow, AnUnfinishedWindowHasTheMeanSoFar) {
+  ReplayBuffer buf(1, 1, 100, 4);
+  add_rewards(buf, {2, 4, 6}, "...");
+  EXPECT_EQ(mean_returns(buf), (std::vector<float>{4, 5, 6}));
+  add_rewards(buf, {8, 10}, "..");
+  EXPECT_EQ(mean_returns(buf), (std::vector<float>{5, 7, 8, 9, 10}));
+}
+
+// Overwriting the oldest slots neither disturbs the windows of the transitions kept nor lets a new
+// transition's reward reach the one it replaced.
+TEST(ReturnWindow, RingOverwriteKeepsTheWindowsRight) {
+  ReplayBuffer buf(1, 1, 4, 3);
+  add_rewards(buf, {1, 2, 3, 4, 5, 6, 7}, "..T....");
+  ASSERT_EQ(buf.size(), 4u);
+  EXPECT_EQ(buf.reward(0), 4.0f);
+  EXPECT_EQ(mean_returns(buf), (std::vector<float>{5, 6, 6.5f, 7}));
+  // A window longer than the buffer: the oldest kept transition holds the mean of what is kept after it.
+  ReplayBuffer small(1, 1, 3, 10);
+  add_rewards(small, {1, 2, 3, 4, 5}, ".....");
+  EXPECT_EQ(mean_returns(small), (std::vector<float>{4, 4.5f, 5}));
+}
+
+TEST(ReturnWindow, AWindowBelowOneIsRefused) {
+  EXPECT_THROW(ReplayBuffer(1, 1, 4, 0), std::invalid_argument);
 }

@@ -112,6 +112,45 @@ TEST(RapidRun, PriorAlgorithmReadsADatasetAndLogsBothBcLosses) {
   EXPECT_TRUE(r["bc_loss"][0]["online"].is_number());
 }
 
+// RAPID-RL (return) trains like RAPID-RL once it has its window; it refuses to run without the
+// key (no hidden default) and on a dataset with no episode end, as bad input: exit 2, one line,
+// nothing written.
+TEST(RapidRun, RapidRlReturnNeedsItsWindowAndADatasetOfEpisodes) {
+  rapid::testing::ScratchDir dir;
+  write_dataset(dir.file("prior.h5"), random_pendulum_dataset(600));
+  Dataset unbroken = random_pendulum_dataset(600);
+  unbroken.terminals.assign(unbroken.size(), false);
+  unbroken.timeouts.assign(unbroken.size(), false);
+  write_dataset(dir.file("unbroken.h5"), unbroken);
+  const auto run = [&](const std::string& algo, const std::string& file, const std::string& sets, const std::string& out) {
+    return rapid_cli("run " + kShort + sets + "--algo " + algo + " --dataset " + dir.file(file) + " --seed 1 --out " +
+                         dir.file(out),
+                     /*with_stderr=*/true);
+  };
+
+  auto r = run("rapid-rl-return", "prior.h5", "", "missing");
+  EXPECT_EQ(r.exit_code, 2) << r.text;
+  EXPECT_EQ(r.text,
+            "rapid: error: algorithm 'rapid-rl-return' needs config key 'return_horizon' (decisions of the return "
+            "window; e.g. --set return_horizon=20)\n");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("missing")));
+
+  r = run("rapid-rl-return", "unbroken.h5", "--set return_horizon=20 ", "unbroken");
+  EXPECT_EQ(r.exit_code, 2) << r.text;
+  EXPECT_EQ(r.text, "rapid: error: --dataset: dataset " + dir.file("unbroken.h5") +
+                        ": has no episode ends (terminals/timeouts all false); rapid-rl-return needs episodes\n");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("unbroken")));
+
+  r = run("rapid-rl-return", "prior.h5", "--set return_horizon=20 ", "job");
+  ASSERT_EQ(r.exit_code, 0) << r.text;
+  const auto record = read_record(dir.file("job"));
+  EXPECT_EQ(record["status"], "ok");
+  EXPECT_EQ(record["config"]["return_horizon"], 20);
+  EXPECT_FALSE(record["config"].contains("bc_q_alpha")) << "an optional key left out stays out";
+  // RAPID-RL needs no episodes: the same unbroken file is fine for it.
+  EXPECT_EQ(run("rapid-rl", "unbroken.h5", "", "rapid-rl").exit_code, 0);
+}
+
 TEST(RapidRun, DivergenceIsRecordedNotCrashed) {
   rapid::testing::ScratchDir dir;
   const auto out = rapid_cli("run " + kShort + "--algo ddpg --seed 0 --set critic_lr=1e30 --set actor_lr=1e30 --out " +

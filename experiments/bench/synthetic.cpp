@@ -4,8 +4,8 @@
 
 namespace rapid::bench {
 
-ReplayBuffer synthetic_replay(int obs_dim, int act_dim, int n, float epsilon, std::uint64_t seed) {
-  ReplayBuffer buffer(obs_dim, act_dim, static_cast<std::size_t>(n));
+ReplayBuffer synthetic_replay(int obs_dim, int act_dim, int n, float epsilon, std::uint64_t seed, int return_window) {
+  ReplayBuffer buffer(obs_dim, act_dim, static_cast<std::size_t>(n), return_window);
   Rng rng(seed);
   Vec s(obs_dim), a(act_dim), s2(obs_dim);
   auto fill = [&rng](Vec& v) {

@@ -9,7 +9,9 @@
 namespace rapid::bench {
 
 // `n` random transitions: observations and actions uniform in [-1, 1], rewards uniform in
-// [ε − 1, ε + 1] (so RAPID-RL imitates about half of them), one in twenty terminal.
-ReplayBuffer synthetic_replay(int obs_dim, int act_dim, int n, float epsilon, std::uint64_t seed);
+// [ε − 1, ε + 1] (so RAPID-RL imitates about half of them), one in twenty terminal; Batch::ret
+// over `return_window` decisions.
+ReplayBuffer synthetic_replay(int obs_dim, int act_dim, int n, float epsilon, std::uint64_t seed,
+                              int return_window = 1);
 
 }  // namespace rapid::bench

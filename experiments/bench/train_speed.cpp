@@ -115,12 +115,13 @@ TrainBenchResult bench_train(const std::string& scenario, const RunConfig& defau
     // The same seeds every round: the same run, so the rounds differ only by machine noise.
     const Algorithm& algo = find_algorithm(o.algo);
     auto agent = algo.make(obs_dim, act_dim, config.agent, stream_seed(7, Stream::kNetworkInit));
+    const int return_window = algo.return_window(config.agent);
     ReplayBuffer prior;
-    if (algo.uses_prior) prior = synthetic_replay(obs_dim, act_dim, 4096, config.agent.epsilon, 21);
+    if (algo.uses_prior) prior = synthetic_replay(obs_dim, act_dim, 4096, config.agent.epsilon, 21, return_window);
     RecordingEnv recorder(*env, o.steps + 4L * env->horizon());
     TrainLog log;
     const auto t0 = Clock::now();
-    train(recorder, *agent, algo.uses_prior ? &prior : nullptr, config, /*run_seed=*/7, log);
+    train(recorder, *agent, algo.uses_prior ? &prior : nullptr, return_window, config, /*run_seed=*/7, log);
     const double wall = seconds_since(t0);
 
     const TrajectoryCost alone = recorder.replay(*env);

@@ -111,6 +111,8 @@ UpdateBenchResult bench_update(const std::string& algo, int obs_dim, int act_dim
 
   const Algorithm& algorithm = find_algorithm(algo);
   auto agent = algorithm.make(obs_dim, act_dim, config, stream_seed(1, Stream::kNetworkInit));
+  // Batch::ret is an input of the update like the reward, so its window (1 here) costs the update
+  // nothing, and every algorithm is measured on the config as it is (return_horizon or not).
   const ReplayBuffer prior = synthetic_replay(obs_dim, act_dim, 4096, config.epsilon, 11);
   const ReplayBuffer online = synthetic_replay(obs_dim, act_dim, 4096, config.epsilon, 12);
   SymmetricSampler sampler(algorithm.uses_prior ? &prior : nullptr, &online);

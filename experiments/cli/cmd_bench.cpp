@@ -12,6 +12,7 @@
 #include "experiments/cli/checks.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
+#include "experiments/run/job.hpp"
 #include "experiments/run/run_config.hpp"
 
 namespace rapid {
@@ -54,7 +55,10 @@ int run_bench(const BenchOptions& o) {
     check_option("--scenario", [&] { make_env(o.scenario); });
     scenarios = {o.scenario};
   }
-  check_option("--train-algo", [&] { find_algorithm(o.train_algo); });
+  check_option("--train-algo", [&] {
+    // It trains on the scenarios' config files as they are, which must give it every key it needs.
+    for (const std::string& s : scenarios) check_config_fits(o.train_algo, run_config_from_json(default_config_json(s), s));
+  });
   const BenchPlan plan = make_plan(o.quick);
   const auto t_start = Clock::now();
   bench::BenchReport report;

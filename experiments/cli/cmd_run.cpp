@@ -35,15 +35,15 @@ std::string resolve_dataset_path(const RunOptions& o) {
 }
 
 
-// The prior dataset must fit the scenario before anything is written: a file that does not is
-// bad input (exit 2), not a failed run with a record.
-void check_prior_dataset(const std::string& path, const std::string& scenario) {
+// The prior dataset must fit the scenario and the algorithm before anything is written: a file
+// that does not is bad input (exit 2), not a failed run with a record.
+void check_prior_dataset(const std::string& path, const std::string& scenario, const std::string& algo) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw UsageError("--dataset: no dataset file at '" + path + "'" + (ec ? " (" + ec.message() + ")" : ""));
   const std::unique_ptr<Env> env = make_env(scenario);
   try {
-    read_prior_dataset(path, scenario, env->obs_dim(), env->act_dim());
+    read_prior_dataset(path, scenario, env->obs_dim(), env->act_dim(), find_algorithm(algo));
   } catch (const DatasetError& e) {
     throw UsageError(std::string("--dataset: ") + e.what());
   }
@@ -62,12 +62,13 @@ int run_command(const RunOptions& o) {
   if (!o.dataset.empty()) {
     spec.dataset = o.dataset;
     spec.dataset_path = resolve_dataset_path(o);
-    check_prior_dataset(spec.dataset_path, o.scenario);
+    check_prior_dataset(spec.dataset_path, o.scenario, o.algo);
   }
   nlohmann::json sets = nlohmann::json::object();
   try {
     for (const auto& s : o.sets) parse_set_option(s, sets);
     spec.config = resolve_cli_config(o.scenario, o.profile, o.grid, sets);
+    check_config_fits(o.algo, run_config_from_json(spec.config, o.scenario));
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }

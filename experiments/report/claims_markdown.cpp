@@ -1,6 +1,9 @@
 #include "experiments/report/claims_markdown.hpp"
 
+#include <algorithm>
 #include <sstream>
+
+#include "algos/registry.hpp"
 
 namespace rapid {
 
@@ -22,6 +25,19 @@ std::string markdown_table(const ClaimResult& c) {
   return out.str();
 }
 
+// The claims are the paper's: an algorithm it does not have is left out of them (C1 and C5 compare
+// RAPID-RL with the paper's algorithms only). Empty for a grid of the paper's algorithms.
+std::string non_paper_note(const Summary& s) {
+  std::string names;
+  for (const Algorithm& a : algorithms())
+    if (!a.in_paper && std::find(s.grid.algos.begin(), s.grid.algos.end(), a.name) != s.grid.algos.end())
+      names += (names.empty() ? "" : ", ") + a.display_name;
+  if (names.empty()) return "";
+  return "The grid also has " + names +
+         ", which the paper does not have: the claims leave it out (in C1 and C5 RAPID-RL is compared with the "
+         "paper's algorithms only).\n\n";
+}
+
 }  // namespace
 
 std::string claims_markdown(const Summary& s) {
@@ -31,7 +47,7 @@ std::string claims_markdown(const Summary& s) {
          "final return (or of a curve). PASS/FAIL is decided by the definition printed under each claim; N/A means the "
          "grid does not contain what the claim is about. A row whose cells have no ok seed counts against the claim. "
          "With few seeds a verdict is weak evidence: look at the intervals in summary.json and table.md.\n\n"
-      << "| Claim | Verdict | Why |\n|---|---|---|\n";
+      << non_paper_note(s) << "| Claim | Verdict | Why |\n|---|---|---|\n";
   for (const ClaimResult& c : s.claims) out << "| " << c.id << " | " << c.verdict << " | " << c.reason << " |\n";
   for (const ClaimResult& c : s.claims) {
     out << "\n## " << c.id << ": " << c.verdict << "\n\n"

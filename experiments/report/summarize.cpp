@@ -162,7 +162,7 @@ void build_poi(Summary& s) {
     const CellSummary* ours = s.column_cell(row, "rapid-rl");
     if (!ours) continue;
     for (const auto& [algo, index] : row.cells) {
-      if (algo == "rapid-rl") continue;
+      if (!is_paper_baseline(algo)) continue;
       const CellSummary& theirs = s.cells[index];
       PoiEntry e;
       e.scenario = row.scenario;

@@ -1,6 +1,10 @@
 #include "experiments/report/summary.hpp"
 
+#include "algos/registry.hpp"
+
 namespace rapid {
+
+bool is_paper_baseline(const std::string& algo) { return algo != "rapid-rl" && find_algorithm(algo).in_paper; }
 
 std::string CellSummary::key() const {
   return scenario + "/" + (dataset.empty() ? "none" : dataset) + "/" + algo + (axis.empty() ? "" : "/" + point_label(axis));

@@ -66,6 +66,11 @@ struct TableRow {
   std::optional<std::string> best;  // the algorithm with the highest mean (ties: the first column)
 };
 
+// The paper's baselines RAPID-RL is compared with (P(RAPID-RL > baseline), claims C1 and C5): its
+// other Table I columns. An algorithm the paper does not have (rapid-rl-return) is a column of our
+// tables, not one of its baselines.
+bool is_paper_baseline(const std::string& algo);
+
 struct PoiEntry {
   std::string scenario, dataset, baseline;
   std::string point;  // the row's axis point label

@@ -169,7 +169,7 @@ std::string table_markdown(const Summary& s) {
            "interval in brackets.\n\n| Scenario | Dataset |" << (axes ? " Axes |" : "");
     std::vector<std::string> baselines;
     for (const auto& a : algos)
-      if (a != "rapid-rl") baselines.push_back(a);
+      if (is_paper_baseline(a)) baselines.push_back(a);
     for (const auto& b : baselines) out << " vs " << algo_display_name(b) << " |";
     out << "\n|---|---|" << (axes ? "---|" : "");
     for (std::size_t i = 0; i < baselines.size(); ++i) out << "---:|";

@@ -174,6 +174,9 @@ const std::vector<ConfigKey>& config_keys() {
       optional_key("bc_q_alpha", &AgentConfig::bc_q_alpha, kNonNegative, 0.0f,
                    "TD3+BC's α: an algorithm with an imitation term scales its actor loss's Q term by "
                    "λ = α / (mean absolute Q(s, π(s)) over the batch); absent or 0: off (no scaling)"),
+      optional_key("return_horizon", &AgentConfig::return_horizon, kPositive, 0,
+                   "RAPID-RL (return)'s window n: it imitates a transition by relu(Ḡ − ε), Ḡ the mean reward "
+                   "over the next n decisions of its episode; absent: not given, and rapid-rl-return refuses to run"),
       key("steps", &RunConfig::steps, kPositive, "environment decisions of training"),
       key("warmup_steps", &RunConfig::warmup_steps, kNonNegative,
           "decisions of uniform-random actions, without updates, before learning starts"),

@@ -14,6 +14,10 @@ void check_dataset_fits(const std::string& algo, bool has_dataset) {
   if (!needs && has_dataset) throw std::invalid_argument("algorithm '" + algo + "' takes no dataset");
 }
 
+void check_config_fits(const std::string& algo, const RunConfig& config) {
+  find_algorithm(algo).return_window(config.agent);
+}
+
 std::string job_config_hash(const JobSpec& spec) {
   nlohmann::json key = {{"scenario", spec.scenario}, {"algo", spec.algo}, {"seed", spec.seed},
                         {"config", spec.config}, {"dataset", nullptr}};

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "experiments/run/config_keys.hpp"
+
 namespace rapid {
 
 // What a job leaves in its folder.
@@ -31,6 +33,10 @@ struct JobSpec {
 // says which). Throws std::invalid_argument("algorithm 'X' needs a prior dataset" / "… takes no
 // dataset").
 void check_dataset_fits(const std::string& algo, bool has_dataset);
+
+// An algorithm may need keys a config may leave out: rapid-rl-return needs return_horizon (its
+// registry row). Throws std::invalid_argument("algorithm 'X' needs config key 'K' (…)").
+void check_config_fits(const std::string& algo, const RunConfig& config);
 
 // The hash that says whether a finished record still answers this job: the cell, the resolved
 // config and the dataset file's content. Code revision is deliberately not part of it.

@@ -4,7 +4,8 @@
 
 namespace rapid {
 
-Dataset read_prior_dataset(const std::string& path, const std::string& scenario, int obs_dim, int act_dim) {
+Dataset read_prior_dataset(const std::string& path, const std::string& scenario, int obs_dim, int act_dim,
+                           const Algorithm& algo) {
   Dataset data = read_dataset(path, {obs_dim, act_dim, scenario});
   // Every environment's action box is [-1, 1]; data outside it came from another task.
   const float max_abs = data.actions.cwiseAbs().maxCoeff();
@@ -14,6 +15,10 @@ Dataset read_prior_dataset(const std::string& path, const std::string& scenario,
   const auto named = data.metadata.find(meta::kScenario);
   if (named != data.metadata.end() && named->second != scenario)
     throw DatasetError("dataset " + path + ": built for scenario '" + named->second + "', not '" + scenario + "'");
+  // Returns over the next decisions stop at an episode's end; one unbroken stream has none.
+  if (algo.uses_returns && !data.has_episode_ends())
+    throw DatasetError("dataset " + path + ": has no episode ends (terminals/timeouts all false); " + algo.name +
+                       " needs episodes");
   return data;
 }
 

@@ -30,9 +30,10 @@ void remove_leftovers(const JobSpec& spec) {
 }
 
 // The prior buffer of a job whose algorithm uses prior data: its dataset, checked against the
-// scenario (prior_dataset.hpp).
-ReplayBuffer load_prior(const JobSpec& spec, const Env& env) {
-  return make_prior_buffer(read_prior_dataset(spec.dataset_path, spec.scenario, env.obs_dim(), env.act_dim()));
+// scenario and the algorithm (prior_dataset.hpp), with the algorithm's return window.
+ReplayBuffer load_prior(const JobSpec& spec, const Env& env, const Algorithm& algo, int return_window) {
+  return make_prior_buffer(read_prior_dataset(spec.dataset_path, spec.scenario, env.obs_dim(), env.act_dim(), algo),
+                           return_window);
 }
 
 }  // namespace
@@ -42,6 +43,7 @@ int run_job(const JobSpec& spec) {
   std::unique_ptr<Env> env = make_run_env(spec.scenario, config);
   const Algorithm& algo = find_algorithm(spec.algo);
   check_dataset_fits(spec.algo, !spec.dataset_path.empty());
+  const int return_window = algo.return_window(config.agent);
   fs::create_directories(spec.out_dir);
   remove_leftovers(spec);
 
@@ -52,7 +54,7 @@ int run_job(const JobSpec& spec) {
     record["config_hash"] = job_config_hash(spec);
     ReplayBuffer prior;
     if (algo.uses_prior) {
-      prior = load_prior(spec, *env);
+      prior = load_prior(spec, *env, algo, return_window);
       record["dataset_file"] = spec.dataset_path;
     }
     auto agent = algo.make(env->obs_dim(), env->act_dim(), config.agent, stream_seed(spec.seed, Stream::kNetworkInit));
@@ -63,7 +65,7 @@ int run_job(const JobSpec& spec) {
       const double s = seconds_since(t0);
       write_progress(spec.out_dir, step, config.steps, s > 0 ? l.env_steps / s : 0.0);
     };
-    train(*env, *agent, algo.uses_prior ? &prior : nullptr, config, spec.seed, log, hooks);
+    train(*env, *agent, algo.uses_prior ? &prior : nullptr, return_window, config, spec.seed, log, hooks);
     agent->actor().save(spec.out_dir + "/" + job_files::kActor);
     record["status"] = "ok";
   } catch (const DivergedError& e) {

@@ -67,15 +67,16 @@ namespace {
 // those steps has a name. Everything is allocated here, nothing per decision.
 class TrainingRun {
  public:
-  TrainingRun(Env& env, ActorCritic& agent, const ReplayBuffer* prior, const RunConfig& config, std::uint64_t run_seed,
-              TrainLog& log, const TrainHooks& hooks)
+  TrainingRun(Env& env, ActorCritic& agent, const ReplayBuffer* prior, int return_window, const RunConfig& config,
+              std::uint64_t run_seed, TrainLog& log, const TrainHooks& hooks)
       : env_(env),
         agent_(agent),
         config_(config),
         run_seed_(run_seed),
         log_(log),
         hooks_(hooks),
-        online_(env.obs_dim(), env.act_dim(), static_cast<std::size_t>(std::min(config.buffer_capacity, config.steps))),
+        online_(env.obs_dim(), env.act_dim(), static_cast<std::size_t>(std::min(config.buffer_capacity, config.steps)),
+                return_window),
         sampler_(prior, &online_),
         explore_rng_(stream_seed(run_seed, Stream::kExploration)),
         sample_rng_(stream_seed(run_seed, Stream::kSampling)),
@@ -212,10 +213,13 @@ class TrainingRun {
 
 }  // namespace
 
-void train(Env& env, ActorCritic& agent, const ReplayBuffer* prior, const RunConfig& config,
+void train(Env& env, ActorCritic& agent, const ReplayBuffer* prior, int return_window, const RunConfig& config,
            std::uint64_t run_seed, TrainLog& log, const TrainHooks& hooks) {
   if (prior != nullptr && prior->empty()) throw std::invalid_argument("the prior buffer is empty");
-  TrainingRun(env, agent, prior, config, run_seed, log, hooks).run();
+  if (prior != nullptr && prior->return_window() != return_window)
+    throw std::invalid_argument("the prior buffer's return window is " + std::to_string(prior->return_window()) +
+                                ", the online buffer's " + std::to_string(return_window));
+  TrainingRun(env, agent, prior, return_window, config, run_seed, log, hooks).run();
 }
 
 }  // namespace rapid

@@ -60,9 +60,11 @@ EvalResult evaluate(Env& env, ActorCritic& agent, int episodes);
 
 // Trains `agent` online for config.steps decisions. With a `prior` buffer (for the algorithms
 // whose registry row says uses_prior), every batch is half prior, half online; null: all online.
+// The online buffer computes Batch::ret over `return_window` decisions (the algorithm's
+// Algorithm::return_window), which a prior buffer must share so both halves mean the same.
 // Fills `log` as it goes, so a run that throws (DivergedError, a simulator error) keeps the
 // curves it had measured.
-void train(Env& env, ActorCritic& agent, const ReplayBuffer* prior, const RunConfig& config,
+void train(Env& env, ActorCritic& agent, const ReplayBuffer* prior, int return_window, const RunConfig& config,
            std::uint64_t run_seed, TrainLog& log, const TrainHooks& hooks = {});
 
 // Final performance: the mean and std of the last K evaluations' mean returns.

@@ -9,6 +9,7 @@
 #include "envs/env.hpp"
 #include "experiments/run/config_keys.hpp"
 #include "experiments/run/dataset_build.hpp"
+#include "experiments/run/job.hpp"
 #include "experiments/run/json_input.hpp"
 #include "experiments/run/run_config.hpp"
 
@@ -321,6 +322,24 @@ void check_axis_values(const GridChecker& check, const Grid& grid) {
   }
 }
 
+// Every algorithm must find the keys it needs in each scenario's resolved config (rapid-rl-return:
+// return_horizon), or every one of its jobs would fail. An axis may give the key, so each point
+// the algorithm reads is checked.
+void check_algorithms_fit(const GridChecker& check, const Grid& grid) {
+  for (const std::string& scenario : grid.scenarios) {
+    for (const std::string& algo : grid.algos) {
+      const Algorithm& info = find_algorithm(algo);
+      for (const AxisPoint& point : axis_points(grid, scenario, [&](const std::string& key) { return info.reads(key); })) {
+        try {
+          check_config_fits(algo, run_config_from_json(cell_config(grid, scenario, point), scenario));
+        } catch (const std::invalid_argument& e) {
+          check.fail("algos", e.what());
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 Grid parse_grid(const json& doc, const std::string& label) {
@@ -361,6 +380,7 @@ Grid parse_grid(const json& doc, const std::string& label) {
   }
   check_overrides(check, grid);
   check_axis_values(check, grid);
+  check_algorithms_fit(check, grid);
   parse_reference_steps(check, check.object_or_empty(doc, "reference"), grid);
 
   grid.normalized = doc;

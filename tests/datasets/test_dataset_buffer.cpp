@@ -42,6 +42,31 @@ TEST(DatasetBuffer, PriorBufferHoldsTheWholeDatasetInOrder) {
   EXPECT_THROW(make_prior_buffer(make_dataset(5, 2, {})), std::invalid_argument);
 }
 
+// The prior buffer's mean rewards over the window (Batch::ret) are those of the dataset's own
+// episodes, computed here straight from their definition; the trailing episode without an end is
+// cut where the data stops.
+TEST(DatasetBuffer, PriorBufferComputesReturnsWithinEachEpisode) {
+  const int window = 3;
+  for (const bool trailing_partial : {false, true}) {
+    SCOPED_TRACE(trailing_partial);
+    const Dataset d = make_dataset(2, 1, {5, 1, 4}, 7, trailing_partial);
+    EXPECT_TRUE(d.has_episode_ends());
+    const ReplayBuffer buffer = make_prior_buffer(d, window);
+    for (std::size_t t = 0; t < d.size(); ++t) {
+      float sum = 0;
+      int k = 0;
+      for (std::size_t j = t; j < d.size() && k < window; ++j) {
+        sum += d.rewards[static_cast<Eigen::Index>(j)];
+        ++k;
+        if (d.ends_episode(j)) break;
+      }
+      EXPECT_EQ(buffer.mean_return(t), sum / static_cast<float>(k)) << "transition " << t;
+    }
+  }
+  Dataset unbroken = make_dataset(2, 1, {4}, 7, /*trailing_partial=*/true);
+  EXPECT_FALSE(unbroken.has_episode_ends());
+}
+
 TEST(DatasetBuffer, FromAWrappedRingBufferOldestFirst) {
   const Dataset d = make_dataset(2, 1, {3, 5});
   ReplayBuffer ring(2, 1, 5);

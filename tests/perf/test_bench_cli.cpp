@@ -43,7 +43,7 @@ TEST(RapidBench, QuickRunWritesEveryKey) {
       EXPECT_TRUE(j["scenarios"][s][key].is_number()) << s << "." << key;
     }
   }
-  for (const char* a : {"rapid-rl", "rlpd", "col-prior", "col-all", "ddpg"}) {
+  for (const char* a : {"rapid-rl", "rlpd", "col-prior", "col-all", "ddpg", "rapid-rl-return"}) {
     ASSERT_TRUE(j["algorithms"].contains(a)) << a;
     for (const char* key : {"updates_per_s", "update_gflops", "gemm_gflops"})
       EXPECT_TRUE(j["algorithms"][a][key].is_number()) << a << "." << key;
@@ -67,4 +67,6 @@ TEST(RapidBench, OneScenarioAndPendulumWork) {
 TEST(RapidBench, BadInputExitsTwo) {
   EXPECT_EQ(run("bench --quick --scenario nowhere"), 2);
   EXPECT_EQ(run("bench --quick --train-algo nothing"), 2);
+  // It trains on the config files as they are, which have no return_horizon.
+  EXPECT_EQ(run("bench --quick --train-algo rapid-rl-return"), 2);
 }

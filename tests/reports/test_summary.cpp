@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/statistics.hpp"
+#include "experiments/report/claims_markdown.hpp"
 #include "experiments/report/summarize.hpp"
 #include "experiments/report/tables.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
@@ -167,6 +168,54 @@ TEST_F(SummaryTest, SummaryJsonCarriesTheSchemaCellsAndAggregates) {
   EXPECT_EQ(j["scenarios"]["pendulum"]["epsilon"], -0.5);
   EXPECT_TRUE(j["scenarios"]["pendulum"]["datasets"]["initial"]["missing"].get<bool>());
   EXPECT_EQ(j["claims"].size(), 6u);
+}
+
+// An algorithm the paper does not have (rapid-rl-return) is a sixth column after the paper's
+// five, under its own name, and can be the best of a row; it is not one of RAPID-RL's baselines
+// (no probability of beating it) and the claims leave it out, saying so.
+TEST(SummaryWithANonPaperAlgorithm, IsAColumnButNotABaselineNorPartOfTheClaims) {
+  testing::ScratchDir scratch;
+  const std::filesystem::path sweep = scratch.path() / "sweep";
+  nlohmann::json grid = report_test::make_grid("six", {"pendulum"}, {"initial"},
+                                               {"rapid-rl-return", "ddpg", "rapid-rl", "rlpd"}, {0, 1});
+  grid["config"]["return_horizon"] = 20;
+  report_test::write_grid(sweep, grid);
+  const std::vector<std::pair<std::string, double>> finals = {
+      {"rapid-rl", 10}, {"rlpd", 5}, {"ddpg", 3}, {"rapid-rl-return", 20}};
+  for (const auto& [algo, final] : finals)
+    for (std::uint64_t seed : {0u, 1u})
+      report_test::write_run(sweep, report_test::pendulum_run(algo == "ddpg" ? "" : "initial", algo, seed, final + seed));
+
+  const Summary s = build_summary(sweep);
+  ASSERT_EQ(s.rows.size(), 1u);
+  EXPECT_EQ(*s.rows[0].best, "rapid-rl-return");
+  for (const PoiEntry& p : s.poi) EXPECT_NE(p.baseline, "rapid-rl-return");
+  EXPECT_EQ(s.poi.size(), 2u);  // rlpd and ddpg
+  EXPECT_EQ(s.aggregate.back().algo, "rapid-rl-return");
+
+  const std::string md = table_markdown(s);
+  EXPECT_NE(md.find("| Scenario | Dataset | RAPID-RL | RLPD | DDPG | RAPID-RL (return) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| Pendulum | Initial | 10.50 ± 0.50 | 5.50 ± 0.50 | 3.50 ± 0.50 | **20.50 ± 0.50** |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| Scenario | Dataset | vs RLPD | vs DDPG |\n"), std::string::npos) << md;
+  EXPECT_NE(md.find("| RAPID-RL (return) | 20.50 |"), std::string::npos) << md;
+  EXPECT_NE(table_latex(s).find("Dataset & RAPID-RL & RLPD & DDPG & RAPID-RL (return) \\\\"), std::string::npos);
+  EXPECT_NE(table_csv(s).find(",rapid-rl-return_mean,"), std::string::npos);
+
+  const auto c1 = std::find_if(s.claims.begin(), s.claims.end(), [](const ClaimResult& c) { return c.id == "C1"; });
+  ASSERT_NE(c1, s.claims.end());
+  EXPECT_EQ(c1->verdict, "PASS") << c1->reason;  // RAPID-RL is the best of the paper's algorithms
+  EXPECT_EQ(c1->rows[0][2], "RLPD 5.5");
+  const std::string claims = claims_markdown(s);
+  EXPECT_NE(claims.find("The grid also has RAPID-RL (return), which the paper does not have"), std::string::npos)
+      << claims;
+}
+
+// Without such an algorithm the claims say nothing about it.
+TEST_F(SummaryTest, AGridOfThePapersAlgorithmsHasNoNoteAboutOthers) {
+  fill("initial", "rapid-rl", {10, 12});
+  EXPECT_EQ(claims_markdown(build_summary(sweep)).find("which the paper does not have"), std::string::npos);
 }
 
 }  // namespace

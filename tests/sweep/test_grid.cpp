@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <functional>
 
+#include "algos/registry.hpp"
 #include "experiments/sweep/graph.hpp"
 #include "experiments/sweep/grid.hpp"
 #include "experiments/sweep/selection.hpp"
@@ -43,6 +44,23 @@ TEST(Grid, ValidGridGetsDefaults) {
   EXPECT_EQ(g.normalized["reference"]["noise_std"], 0.1);
   EXPECT_EQ(g.normalized["max_retries"], 2);
   EXPECT_EQ(grid_overrides(g, "pendulum"), (json{{"steps", 1000}}));
+}
+
+TEST(Grid, AnAlgorithmFindsTheKeysItNeedsInConfigOrScenarioConfig) {
+  json doc = valid_grid();
+  doc["algos"] = {"rapid-rl-return", "ddpg"};
+  doc["config"]["return_horizon"] = 20;
+  EXPECT_NO_THROW(parse_grid(doc, "g.json"));
+  doc["config"].erase("return_horizon");
+  doc["scenario_config"] = {{"pendulum", {{"return_horizon", 10}}}};
+  EXPECT_NO_THROW(parse_grid(doc, "g.json"));
+  // An axis gives the key to every job that reads it; DDPG does not read it and runs once.
+  doc.erase("scenario_config");
+  doc["axes"] = {{"return_horizon", {5, 20}}};
+  const Grid g = parse_grid(doc, "g.json");
+  ASSERT_EQ(g.axes.size(), 1u);
+  EXPECT_EQ(axis_points(g, "pendulum", [](const std::string& k) { return find_algorithm("ddpg").reads(k); }).size(), 1u);
+  EXPECT_EQ(axis_points(g, "pendulum", [](const std::string& k) { return find_algorithm("rapid-rl-return").reads(k); }).size(), 2u);
 }
 
 TEST(Grid, ScenarioConfigOverridesConfig) {
@@ -94,6 +112,8 @@ TEST(Grid, EachMalformedGridNamesItsField) {
        "grid g.json: seeds: the grid expands to "},
       {"name too long for a folder", [](json& g) { g["name"] = std::string(101, 'n'); },
        "grid g.json: name: is 101 characters long; at most 100"},
+      {"an algorithm without a key it needs", [](json& g) { g["algos"] = {"ddpg", "rapid-rl-return"}; },
+       "grid g.json: algos: algorithm 'rapid-rl-return' needs config key 'return_horizon'"},
   };
   for (const Case& c : cases) {
     json doc = valid_grid();

@@ -1,0 +1,24 @@
+// RAPID-RL (return) (on symmetric batches, algos/registry.cpp): RAPID-RL with each transition's
+// imitation weight taken from where it leads rather than from its own step: relu(Ḡ − ε), Ḡ the
+// mean reward over the next `return_horizon` decisions of its episode (Batch::ret, computed by the
+// replay buffers). A step that pays now but leads into a collision a second later is pulled below
+// ε by the collision's reward. Ḡ is a mean of per-step rewards, in the same units as r, so the
+// same ε applies.
+#pragma once
+
+#include "algos/actor_critic.hpp"
+
+namespace rapid {
+
+class RapidRlReturn : public ActorCritic {
+ public:
+  using ActorCritic::ActorCritic;
+
+ protected:
+  bool imitates() const override { return true; }
+  void bc_weights(const Batch& batch, RowVec& w) const override {
+    w = (batch.ret.array() - config().epsilon).cwiseMax(0.0f).matrix();
+  }
+};
+
+}  // namespace rapid
