@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
+
+#include "core/replay_buffer.hpp"
 
 namespace rapid {
 
@@ -119,6 +122,19 @@ DatasetStats dataset_stats_with_edges(const Dataset& dataset, std::vector<double
   DatasetStats s = stats_without_histogram(dataset);
   s.reward_histogram = make_histogram(rewards_of(dataset), std::move(reward_edges));
   return s;
+}
+
+std::vector<double> imitated_shares(const Dataset& dataset, std::span<const double> epsilons, int return_window) {
+  if (return_window < 1) throw std::invalid_argument("return window must be at least 1, got " + std::to_string(return_window));
+  const ReplayBuffer buffer = make_prior_buffer(dataset, return_window);
+  std::vector<std::size_t> above(epsilons.size(), 0);
+  for (std::size_t i = 0; i < buffer.size(); ++i) {
+    const double g = buffer.mean_return(i);
+    for (std::size_t e = 0; e < epsilons.size(); ++e) above[e] += g > epsilons[e] ? 1 : 0;
+  }
+  std::vector<double> shares;
+  for (std::size_t count : above) shares.push_back(static_cast<double>(count) / static_cast<double>(buffer.size()));
+  return shares;
 }
 
 }  // namespace rapid

@@ -54,4 +54,10 @@ DatasetStats dataset_stats(const Dataset& dataset, int bins = kDefaultHistogramB
 // Reward histogram over the given edges, so several datasets can share bins (Figure 3(a)).
 DatasetStats dataset_stats_with_edges(const Dataset& dataset, std::vector<double> reward_edges);
 
+// For each threshold ε, the share of transitions RAPID-RL imitates: those whose weight
+// relu(Ḡ − ε) is positive, Ḡ being the mean reward over `return_window` decisions of the episode as
+// the prior buffer computes it (1: the step's own reward, the paper's rule; rapid-rl-return: its
+// return_horizon). Throws std::invalid_argument for an empty dataset or a window below 1.
+std::vector<double> imitated_shares(const Dataset& dataset, std::span<const double> epsilons, int return_window = 1);
+
 }  // namespace rapid

@@ -36,9 +36,18 @@ struct InfoOptions {
   bool json = false;
   int bins = kDefaultHistogramBins;
   std::vector<double> range;  // empty, or {lo, hi}: shared histogram bins across datasets
+  std::vector<double> epsilons;  // thresholds whose imitated share is printed
+  int return_horizon = 1;        // the window of Ḡ those shares use (1: per-step reward)
 };
 
-nlohmann::json info_json(const std::string& file, const Dataset& d, const DatasetStats& s) {
+// The share of transitions imitated at each --epsilon, with the window it was computed over.
+struct ImitatedShares {
+  std::vector<double> epsilons, shares;
+  int return_window = 1;
+};
+
+nlohmann::json info_json(const std::string& file, const Dataset& d, const DatasetStats& s,
+                         const ImitatedShares& imitated) {
   nlohmann::json j = dataset_stats_json(s);
   j["file"] = file;
   j["obs_dim"] = d.obs_dim();
@@ -47,6 +56,10 @@ nlohmann::json info_json(const std::string& file, const Dataset& d, const Datase
   j["return_max"] = s.return_max;
   j["reward_histogram"]["outside"] = s.reward_histogram.outside;
   j["metadata"] = d.metadata;
+  if (!imitated.epsilons.empty())
+    j["imitated"] = {{"return_window", imitated.return_window},
+                     {"epsilon", imitated.epsilons},
+                     {"share", imitated.shares}};
   return j;
 }
 
@@ -64,7 +77,8 @@ void print_histogram(std::ostream& out, const Histogram& h) {
   if (h.outside > 0) out << "  outside the range: " << h.outside << "\n";
 }
 
-void print_info(std::ostream& out, const std::string& file, const Dataset& d, const DatasetStats& s) {
+void print_info(std::ostream& out, const std::string& file, const Dataset& d, const DatasetStats& s,
+                const ImitatedShares& imitated) {
   out << "dataset " << file << "\n";
   for (const auto& [key, value] : d.metadata) out << "  " << std::left << std::setw(18) << key << value << "\n";
   out << std::right;
@@ -77,11 +91,22 @@ void print_info(std::ostream& out, const std::string& file, const Dataset& d, co
       << "  max " << s.reward_max << "\n";
   out << "reward histogram (" << s.reward_histogram.counts.size() << " bins)\n";
   print_histogram(out, s.reward_histogram);
+  if (imitated.epsilons.empty()) return;
+  out << "imitated (mean reward over " << imitated.return_window << " decision"
+      << (imitated.return_window == 1 ? "" : "s") << " of the episode > epsilon)\n";
+  for (std::size_t i = 0; i < imitated.epsilons.size(); ++i)
+    out << "  epsilon " << std::setw(10) << imitated.epsilons[i] << "  " << std::fixed << std::setprecision(1)
+        << 100.0 * imitated.shares[i] << "% of transitions\n"
+        << std::defaultfloat << std::setprecision(6);
 }
 
 int run_info(const InfoOptions& o) {
   if (!o.range.empty() && !(o.range[0] < o.range[1]))
     throw UsageError("--range: low end must be below the high end");
+  for (double e : o.epsilons)
+    if (!std::isfinite(e)) throw UsageError("--epsilon: expected finite numbers, got " + std::to_string(e));
+  if (o.return_horizon != 1 && o.epsilons.empty())
+    throw UsageError("--return-horizon: only used with --epsilon (the imitated share it sets the window of)");
   Dataset d;
   try {
     d = read_dataset(o.file);
@@ -90,10 +115,12 @@ int run_info(const InfoOptions& o) {
   }
   const DatasetStats s = o.range.empty() ? dataset_stats(d, o.bins)
                                          : dataset_stats_with_edges(d, uniform_edges(o.range[0], o.range[1], o.bins));
+  ImitatedShares imitated{o.epsilons, {}, o.return_horizon};
+  if (!imitated.epsilons.empty()) imitated.shares = imitated_shares(d, imitated.epsilons, o.return_horizon);
   if (o.json)
-    std::cout << info_json(o.file, d, s).dump() << std::endl;
+    std::cout << info_json(o.file, d, s, imitated).dump() << std::endl;
   else
-    print_info(std::cout, o.file, d, s);
+    print_info(std::cout, o.file, d, s, imitated);
   return kExitOk;
 }
 
@@ -105,6 +132,14 @@ Command add_info(CLI::App& dataset) {
   sub->add_option("--bins", opts->bins, "number of reward histogram bins")->check(count_validator());
   sub->add_option("--range", opts->range, "histogram range LO HI (default: the rewards' min and max)")
       ->expected(2);
+  sub->add_option("--epsilon", opts->epsilons,
+                  "print the share of transitions imitated at these thresholds (repeat or comma-separate)")
+      ->expected(1)
+      ->delimiter(',')
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  sub->add_option("--return-horizon", opts->return_horizon,
+                  "the imitated share by the mean reward over N decisions (rapid-rl-return), not the step's")
+      ->check(count_validator());
   return {sub, [opts] { return run_info(*opts); }};
 }
 

@@ -60,6 +60,27 @@ TEST_F(DatasetInfoCli, BinsAndSharedRange) {
   EXPECT_EQ(j["reward_histogram"]["outside"], 0);
 }
 
+TEST_F(DatasetInfoCli, ImitatedSharePerEpsilonAndReturnHorizon) {
+  const std::string file = dir_.file("d.h5");
+  const std::vector<double> eps{-0.5, 0.25};
+  for (int horizon : {1, 5}) {
+    const test::CliOutput out = rapid_cli("dataset info --json --epsilon -0.5,0.25 --return-horizon " +
+                                          std::to_string(horizon) + " " + file);
+    ASSERT_EQ(out.exit_code, 0) << out.text;
+    const nlohmann::json j = nlohmann::json::parse(out.text);
+    EXPECT_EQ(j["imitated"]["return_window"], horizon);
+    EXPECT_EQ(j["imitated"]["epsilon"], eps);
+    EXPECT_EQ(j["imitated"]["share"], imitated_shares(dataset_, eps, horizon));
+  }
+  const test::CliOutput text = rapid_cli("dataset info --epsilon -0.5 --epsilon 0.25 " + file);
+  ASSERT_EQ(text.exit_code, 0) << text.text;
+  EXPECT_THAT(text.text, HasSubstr("imitated (mean reward over 1 decision of the episode > epsilon)"));
+  EXPECT_THAT(text.text, HasSubstr("% of transitions"));
+  const test::CliOutput alone = rapid_cli("dataset info --return-horizon 5 " + file, /*with_stderr=*/true);
+  EXPECT_EQ(alone.exit_code, 2);
+  EXPECT_THAT(alone.text, StartsWith("rapid: error: --return-horizon: only used with --epsilon"));
+}
+
 TEST_F(DatasetInfoCli, HumanReadableSummary) {
   const test::CliOutput out = rapid_cli("dataset info " + dir_.file("d.h5"));
   ASSERT_EQ(out.exit_code, 0) << out.text;

@@ -54,6 +54,18 @@ TEST(DatasetStats, HandComputedNumbers) {
   EXPECT_EQ(s.reward_histogram.outside, 0u);
 }
 
+TEST(DatasetStats, ImitatedSharesCountTheStepsAboveEpsilonByReturnWindow) {
+  const Dataset d = hand_made();  // rewards 1 2 3 | 4 5 | 6
+  const std::vector<double> eps{0.0, 2.0, 4.5, 6.0};
+  // Per step: r > ε for 6, 5 (r ≥ 3), 2 (5 and 6), 0 of the six transitions.
+  const std::vector<double> step = imitated_shares(d, eps, 1);
+  EXPECT_EQ(step, (std::vector<double>{1.0, 4.0 / 6, 2.0 / 6, 0.0}));
+  // Window 2, cut at each episode's end: means 1.5 2.5 3 | 4.5 5 | 6.
+  const std::vector<double> window = imitated_shares(d, eps, 2);
+  EXPECT_EQ(window, (std::vector<double>{1.0, 5.0 / 6, 2.0 / 6, 0.0}));
+  EXPECT_THROW(imitated_shares(d, eps, 0), std::invalid_argument);
+}
+
 TEST(DatasetStats, SharedEdgesCountWhatFallsOutside) {
   const DatasetStats s = dataset_stats_with_edges(hand_made(), {0.0, 2.5, 5.0});
   EXPECT_EQ(s.reward_histogram.counts, (std::vector<std::size_t>{2, 3}));  // {1, 2} and {3, 4, 5}
