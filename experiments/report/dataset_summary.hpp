@@ -18,11 +18,13 @@ inline constexpr int kSummaryHistogramBins = 40;
 // the summary's per-dataset entry and the core of `rapid dataset info --json`.
 nlohmann::json dataset_stats_json(const DatasetStats& s);
 
-// One entry per scenario with prior cells × grid dataset; a missing or unreadable file is an
-// entry with present = false and the reason.
+// One entry per scenario with prior cells × reference point × grid dataset (the reference points
+// are those of the axes the reference reads; one, unnamed, without such axes); a missing or
+// unreadable file is an entry with present = false and the reason.
 std::vector<DatasetSummary> summarize_datasets(const SweepFolder& folder);
 
 // SWEEP/datasets/<scenario>/reference/record.json's status and final result; null if absent.
+// With axes the reference reads, an object: point label → that point's summary.
 nlohmann::json reference_summary(const SweepFolder& folder, const std::string& scenario);
 
 }  // namespace rapid

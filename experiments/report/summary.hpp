@@ -88,6 +88,7 @@ struct AggregateEntry {
 
 struct DatasetSummary {
   std::string scenario, dataset;
+  std::string point;       // the reference point's label ("gamma=0.9"); empty without reference axes
   bool present = false;
   std::string error;       // why it could not be read
   nlohmann::json stats;    // transitions, episodes, return/reward mean/std, reward_histogram

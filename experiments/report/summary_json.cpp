@@ -124,7 +124,13 @@ nlohmann::json summary_to_json(const Summary& s) {
                             {"datasets", nlohmann::json::object()}};
     for (const DatasetSummary& d : s.datasets) {
       if (d.scenario != scenario) continue;
-      entry["datasets"][d.dataset] = d.present ? d.stats : nlohmann::json{{"missing", true}, {"error", d.error}};
+      // With axes the reference reads, each point has its own datasets: "initial @ gamma=0.9".
+      nlohmann::json value = d.present ? d.stats : nlohmann::json{{"missing", true}, {"error", d.error}};
+      if (!d.point.empty()) {
+        value["dataset"] = d.dataset;
+        value["point"] = d.point;
+      }
+      entry["datasets"][d.point.empty() ? d.dataset : d.dataset + " @ " + d.point] = value;
     }
     scenarios[scenario] = entry;
   }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/dataset_io.hpp"
 #include "core/statistics.hpp"
 #include "experiments/report/claims_markdown.hpp"
 #include "experiments/report/summarize.hpp"
@@ -168,6 +169,33 @@ TEST_F(SummaryTest, SummaryJsonCarriesTheSchemaCellsAndAggregates) {
   EXPECT_EQ(j["scenarios"]["pendulum"]["epsilon"], -0.5);
   EXPECT_TRUE(j["scenarios"]["pendulum"]["datasets"]["initial"]["missing"].get<bool>());
   EXPECT_EQ(j["claims"].size(), 6u);
+}
+
+// An axis the reference reads (gamma: no algorithm owns it) gives each of its values its own
+// reference and datasets under datasets/<point>/; the summary reads them there, one entry per
+// point, sharing the histogram's bins, and names the one that is missing.
+TEST(SummaryWithAReferenceAxis, ReadsEachPointsDatasets) {
+  testing::ScratchDir scratch;
+  const std::filesystem::path sweep = scratch.path() / "sweep";
+  nlohmann::json grid = report_test::make_grid("gamma", {"pendulum"}, {"initial"}, {"rapid-rl", "ddpg"}, {0});
+  grid["axes"] = {{"gamma", {0.9, 0.99}}};
+  report_test::write_grid(sweep, grid);
+  Dataset d = testing::make_dataset(3, 1, {10, 5});
+  std::filesystem::create_directories(sweep / "datasets/gamma=0.9/pendulum");
+  write_dataset((sweep / "datasets/gamma=0.9/pendulum/initial.h5").string(), d);
+
+  SummaryOptions options;
+  options.claims = false;
+  const nlohmann::json j = summary_to_json(build_summary(sweep, options));
+  const nlohmann::json& datasets = j["scenarios"]["pendulum"]["datasets"];
+  ASSERT_EQ(datasets.size(), 2u) << datasets.dump();
+  const nlohmann::json& present = datasets["initial @ gamma=0.9"];
+  EXPECT_EQ(present["transitions"], 15);
+  EXPECT_EQ(present["dataset"], "initial");
+  EXPECT_EQ(present["point"], "gamma=0.9");
+  const nlohmann::json& missing = datasets["initial @ gamma=0.99"];
+  EXPECT_TRUE(missing["missing"].get<bool>());
+  EXPECT_EQ(missing["error"], "datasets/gamma=0.99/pendulum/initial.h5 is missing");
 }
 
 // An algorithm the paper does not have (rapid-rl-return) is a sixth column after the paper's
