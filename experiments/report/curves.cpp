@@ -28,13 +28,13 @@ MeanCurve mean_curve(const std::vector<const nlohmann::json*>& records, const st
   return curve;
 }
 
-MeanCurve mean_eval_curve(const std::vector<const nlohmann::json*>& records) {
+MeanCurve mean_eval_curve(const std::vector<const nlohmann::json*>& records, const std::string& y_key) {
   bool has_target = !records.empty();
   for (const nlohmann::json* record : records) {
     const auto& eval = record->contains("eval") ? (*record)["eval"] : nlohmann::json();
     if (eval.is_array() && !eval.empty() && !eval.front().contains("target_step")) has_target = false;
   }
-  return mean_curve(records, "eval", has_target ? "target_step" : "step", "return_mean");
+  return mean_curve(records, "eval", has_target ? "target_step" : "step", y_key);
 }
 
 std::vector<std::pair<double, double>> eval_points(const nlohmann::json& record) {

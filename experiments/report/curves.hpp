@@ -18,8 +18,9 @@ namespace rapid {
 MeanCurve mean_curve(const std::vector<const nlohmann::json*>& records, const std::string& array,
                      const std::string& x_key, const std::string& y_key);
 
-// The evaluation curve's x: "target_step" where the records have it, else "step".
-MeanCurve mean_eval_curve(const std::vector<const nlohmann::json*>& records);
+// An evaluation curve (of `y_key`: the return, or the collision rate): x is "target_step" where
+// the records have it, else "step".
+MeanCurve mean_eval_curve(const std::vector<const nlohmann::json*>& records, const std::string& y_key = "return_mean");
 
 // One run's evaluations as (x, return_mean), x as mean_eval_curve aligns them.
 std::vector<std::pair<double, double>> eval_points(const nlohmann::json& record);

@@ -84,6 +84,8 @@ CellSummary summarize_cell(const SweepFolder& folder, const std::vector<const Sw
   cell.eval_auc = normalized_area(cell.eval);
   cell.bc_prior = mean_curve(pointers, "bc_loss", "step", "prior");
   cell.bc_online = mean_curve(pointers, "bc_loss", "step", "online");
+  cell.q_value = mean_curve(pointers, "losses", "step", "q_mean");
+  cell.collision_rate = mean_eval_curve(pointers, "collision_rate");
   add_statistics(cell, settings);
   return cell;
 }

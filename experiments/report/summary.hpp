@@ -54,6 +54,8 @@ struct CellSummary {
   std::optional<Interval> mean_ci, iqm_ci;
   MeanCurve eval;                       // return_mean over target_step
   MeanCurve bc_prior, bc_online;        // rapid-rl and other prior algorithms; prior empty without one
+  MeanCurve q_value;                    // the critic's mean Q over the batch (losses.q_mean)
+  MeanCurve collision_rate;             // share of evaluation episodes ended by a collision (driving)
   std::optional<double> eval_auc;       // area under the mean eval curve / step range
   std::string key() const;              // "merge/initial/rapid-rl", "merge/none/ddpg", "merge/initial/rapid-rl/epsilon=0.3"
 };

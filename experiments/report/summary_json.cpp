@@ -43,7 +43,9 @@ nlohmann::json cell_json(const CellSummary& c) {
           {"eval_auc", json_number(c.eval_auc)},
           {"eval_curve", curve_json(c.eval)},
           {"bc_prior_curve", curve_json(c.bc_prior)},
-          {"bc_online_curve", curve_json(c.bc_online)}};
+          {"bc_online_curve", curve_json(c.bc_online)},
+          {"q_curve", curve_json(c.q_value)},
+          {"collision_curve", curve_json(c.collision_rate)}};
   if (!c.axis.empty()) j["axis"] = point_json(c.axis);  // absent without axes: older summaries stay as they were
   return j;
 }

@@ -131,6 +131,33 @@ std::string sensitivity_markdown(const Summary& s, int decimals) {
   return out.str();
 }
 
+// The last point of a curve as text ("—" for an empty curve).
+std::string last_text(const MeanCurve& curve, int decimals) {
+  return curve.empty() ? "—" : fixed(curve.mean.back(), decimals);
+}
+
+// What each cell's agents ended with: the collision rate of the last evaluation, the critic's
+// mean Q and the imitation errors at the last logged update. They explain a return (CoL-all's
+// imitation term is tiny beside Q; a low return with no collisions is a crawling agent).
+std::string end_of_training_markdown(const Summary& s) {
+  std::ostringstream out;
+  const bool axes = !s.grid.axes.empty();
+  out << "\n## End of training\n\nMeans over the ok seeds at the last logged point: the share of the last "
+         "evaluation's episodes ended by a collision, the critic's mean Q over a batch, and the imitation error "
+         "‖π(s) − a‖² on the batch's prior and online halves (logged for every algorithm, imitating or not).\n\n"
+      << "| Scenario | Dataset | Algorithm |" << (axes ? " Axes |" : "")
+      << " collisions | Q | BC error prior | BC error online |\n|---|---|---|" << (axes ? "---|" : "")
+      << "---:|---:|---:|---:|\n";
+  for (const CellSummary& c : s.cells) {
+    if (c.n_ok == 0) continue;
+    out << "| " << scenario_display_name(c.scenario) << " | " << (c.dataset.empty() ? "—" : dataset_display_name(c.dataset))
+        << " | " << algo_display_name(c.algo) << " |" << (axes ? " " + point_text(c.axis) + " |" : "") << " "
+        << last_text(c.collision_rate, 2) << " | " << last_text(c.q_value, 1) << " | " << last_text(c.bc_prior, 3)
+        << " | " << last_text(c.bc_online, 3) << " |\n";
+  }
+  return out.str();
+}
+
 }  // namespace
 
 std::string table_markdown(const Summary& s) {
@@ -190,6 +217,7 @@ std::string table_markdown(const Summary& s) {
     }
   }
   if (!s.sensitivity.empty()) out << sensitivity_markdown(s, decimals);
+  out << end_of_training_markdown(s);
   if (!s.aggregate.empty()) {
     out << "\n## IQM per algorithm over all cells\n\n"
         << "Interquartile mean of every ok run's final return, 95% stratified-bootstrap interval (strata = cells). "

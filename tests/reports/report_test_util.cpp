@@ -56,9 +56,11 @@ void write_run(const fs::path& sweep, const FakeRun& run, const std::string& has
   nlohmann::json eval = nlohmann::json::array();
   for (const CurvePoint& p : run.eval)
     eval.push_back({{"step", p.step}, {"target_step", p.step}, {"return_mean", p.value}, {"return_std", 0.0},
-                    {"collision_rate", 0.0}});
+                    {"collision_rate", run.collision_rate}});
   nlohmann::json bc = nlohmann::json::array();
   for (const BcPoint& p : run.bc) bc.push_back({{"step", p.step}, {"prior", p.prior}, {"online", p.online}});
+  nlohmann::json losses = nlohmann::json::array();
+  for (const CurvePoint& p : run.q) losses.push_back({{"step", p.step}, {"q_mean", p.value}, {"actor", -p.value}, {"critic", 0.1}});
   const bool ok = run.status == "ok";
   const nlohmann::json record = {
       {"schema", "rapid.run/1"},
@@ -74,7 +76,7 @@ void write_run(const fs::path& sweep, const FakeRun& run, const std::string& has
       {"eval", eval},
       {"train_episodes", nlohmann::json::array()},
       {"bc_loss", bc},
-      {"losses", nlohmann::json::array()},
+      {"losses", losses},
       {"final", {{"return_mean", ok ? nlohmann::json(run.final_return) : nlohmann::json(nullptr)}, {"return_std", 0.0}, {"last_k", 2}}},
       {"timing", nlohmann::json::object()}};
   write_text(record_path(sweep, run.scenario, run.dataset, run.algo, run.seed), record.dump(1));

@@ -26,6 +26,8 @@ struct FakeRun {
   double final_return = 0.0;
   std::vector<CurvePoint> eval;         // target_step → return_mean
   std::vector<BcPoint> bc;
+  std::vector<CurvePoint> q;            // step → the critic's q_mean (losses)
+  double collision_rate = 0.0;          // at every evaluation
   double epsilon = -0.5;
 };
 

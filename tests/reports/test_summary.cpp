@@ -171,6 +171,32 @@ TEST_F(SummaryTest, SummaryJsonCarriesTheSchemaCellsAndAggregates) {
   EXPECT_EQ(j["claims"].size(), 6u);
 }
 
+// Table I's "End of training" section: per cell, the means over ok seeds of the last evaluation's
+// collision rate, the critic's last mean Q and the last imitation errors; summary.json has the curves.
+TEST_F(SummaryTest, EndOfTrainingShowsCollisionsQAndImitationErrors) {
+  for (std::uint64_t seed : {0u, 1u}) {
+    FakeRun r = report_test::pendulum_run("initial", "rapid-rl", seed, 10.0);
+    r.q = {{500, 1.0}, {1000, 10.0 + 10.0 * seed}};
+    r.bc = {{1000, 0.1 + seed * 0.2, 0.5}};
+    r.collision_rate = seed == 0 ? 0.2 : 0.4;
+    report_test::write_run(sweep, r);
+  }
+  SummaryOptions options;
+  options.claims = false;
+  const Summary s = build_summary(sweep, options);
+  const std::string md = table_markdown(s);
+  EXPECT_NE(md.find("| collisions | Q | BC error prior | BC error online |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| Pendulum | Initial | RAPID-RL | 0.30 | 15.0 | 0.200 | 0.500 |"), std::string::npos) << md;
+  const nlohmann::json j = summary_to_json(s);
+  const auto cell = std::find_if(j["cells"].begin(), j["cells"].end(), [](const nlohmann::json& c) {
+    return c["dataset"] == "initial" && c["algo"] == "rapid-rl";
+  });
+  ASSERT_NE(cell, j["cells"].end());
+  EXPECT_EQ((*cell)["q_curve"]["step"], (std::vector<double>{500, 1000}));
+  EXPECT_EQ((*cell)["q_curve"]["mean"], (std::vector<double>{1.0, 15.0}));
+  EXPECT_DOUBLE_EQ((*cell)["collision_curve"]["mean"].back().get<double>(), 0.3);
+}
+
 // An axis the reference reads (gamma: no algorithm owns it) gives each of its values its own
 // reference and datasets under datasets/<point>/; the summary reads them there, one entry per
 // point, sharing the histogram's bins, and names the one that is missing.
