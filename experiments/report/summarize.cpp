@@ -163,26 +163,31 @@ void build_poi(Summary& s) {
   for (const TableRow& row : s.rows) {
     const CellSummary* ours = s.column_cell(row, "rapid-rl");
     if (!ours) continue;
-    for (const auto& [algo, index] : row.cells) {
-      if (!is_paper_baseline(algo)) continue;
-      const CellSummary& theirs = s.cells[index];
+    // x beats y: RAPID-RL a paper baseline, or a variant the paper does not have RAPID-RL.
+    auto compare = [&](const std::string& x_algo, const CellSummary& x, const std::string& y_algo,
+                       const CellSummary& y, const std::string& key) {
       PoiEntry e;
       e.scenario = row.scenario;
       e.dataset = row.dataset;
       e.point = point_label(row.axis);
-      e.baseline = algo;
-      e.n_x = ours->n_ok;
-      e.n_y = theirs.n_ok;
-      e.p = probability_of_improvement(ours->finals, theirs.finals);
+      e.algo = x_algo;
+      e.baseline = y_algo;
+      e.n_x = x.n_ok;
+      e.n_y = y.n_ok;
+      e.p = probability_of_improvement(x.finals, y.finals);
       if (e.n_x > 0 && e.n_y > 0) {
-        const Strata two = {ours->finals, theirs.finals};
+        const Strata two = {x.finals, y.finals};
         e.ci = stratified_bootstrap_ci(
             two, [](const Strata& st) { return probability_of_improvement(st[0], st[1]); },
             bootstrap_options(s.bootstrap, s.bootstrap.poi_replicates,
-                              row.scenario + "/" + row.dataset + "/poi/" + algo + (e.point.empty() ? "" : "/" + e.point)));
+                              row.scenario + "/" + row.dataset + "/poi/" + key + (e.point.empty() ? "" : "/" + e.point)));
       }
       s.poi.push_back(e);
-    }
+    };
+    for (const auto& [algo, index] : row.cells)
+      if (is_paper_baseline(algo)) compare("rapid-rl", *ours, algo, s.cells[index], algo);
+    for (const auto& [algo, index] : row.cells)
+      if (!find_algorithm(algo).in_paper) compare(algo, s.cells[index], "rapid-rl", *ours, algo + ">rapid-rl");
   }
 }
 

@@ -73,8 +73,11 @@ struct TableRow {
 // tables, not one of its baselines.
 bool is_paper_baseline(const std::string& algo);
 
+// P(algo > baseline) in one row: RAPID-RL against each paper baseline, and each algorithm the
+// paper does not have (a variant of RAPID-RL) against RAPID-RL.
 struct PoiEntry {
   std::string scenario, dataset, baseline;
+  std::string algo = "rapid-rl";
   std::string point;  // the row's axis point label
   double p = 0.0;
   std::optional<Interval> ci;

@@ -105,7 +105,7 @@ nlohmann::json summary_to_json(const Summary& s) {
 
   j["probability_of_improvement"] = nlohmann::json::array();
   for (const PoiEntry& p : s.poi)
-    j["probability_of_improvement"].push_back({{"scenario", p.scenario}, {"dataset", p.dataset}, {"algo", "rapid-rl"},
+    j["probability_of_improvement"].push_back({{"scenario", p.scenario}, {"dataset", p.dataset}, {"algo", p.algo},
                                                {"baseline", p.baseline}, {"p", json_number(p.p)}, {"ci", json_interval(p.ci)},
                                                {"n_x", p.n_x}, {"n_y", p.n_y}});
   for (std::size_t i = 0; i < s.poi.size(); ++i)

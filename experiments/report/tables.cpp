@@ -191,23 +191,30 @@ std::string table_markdown(const Summary& s) {
   }
 
   if (!s.poi.empty()) {
-    out << "\n## Probability that RAPID-RL beats each baseline\n\n"
-        << "P(X > Y) over the ok seeds (Mann–Whitney U / (n_x·n_y), ties count half), 95% stratified-bootstrap "
-           "interval in brackets.\n\n| Scenario | Dataset |" << (axes ? " Axes |" : "");
-    std::vector<std::string> baselines;
+    // Columns: (x, y) pairs, RAPID-RL against each paper baseline, then each variant the paper
+    // does not have against RAPID-RL.
+    std::vector<std::pair<std::string, std::string>> pairs;
     for (const auto& a : algos)
-      if (is_paper_baseline(a)) baselines.push_back(a);
-    for (const auto& b : baselines) out << " vs " << algo_display_name(b) << " |";
+      if (is_paper_baseline(a)) pairs.emplace_back("rapid-rl", a);
+    for (const auto& a : algos)
+      if (!find_algorithm(a).in_paper) pairs.emplace_back(a, "rapid-rl");
+    const bool variants = !pairs.empty() && pairs.back().second == "rapid-rl";
+    out << "\n## Probability that RAPID-RL beats each baseline" << (variants ? " (and that each variant beats RAPID-RL)" : "")
+        << "\n\nP(X > Y) over the ok seeds (Mann–Whitney U / (n_x·n_y), ties count half), 95% stratified-bootstrap "
+           "interval in brackets.\n\n| Scenario | Dataset |" << (axes ? " Axes |" : "");
+    for (const auto& [x, y] : pairs)
+      out << (x == "rapid-rl" ? "" : " " + algo_display_name(x)) << " vs " << algo_display_name(y) << " |";
     out << "\n|---|---|" << (axes ? "---|" : "");
-    for (std::size_t i = 0; i < baselines.size(); ++i) out << "---:|";
+    for (std::size_t i = 0; i < pairs.size(); ++i) out << "---:|";
     out << "\n";
     for (const TableRow& row : s.rows) {
       out << "| " << scenario_display_name(row.scenario) << " | " << dataset_display_name(row.dataset) << " |"
           << (axes ? " " + point_text(row.axis) + " |" : "");
       const std::string point = point_label(row.axis);
-      for (const auto& b : baselines) {
+      for (const auto& [x, y] : pairs) {
         const auto it = std::find_if(s.poi.begin(), s.poi.end(), [&](const PoiEntry& p) {
-          return p.scenario == row.scenario && p.dataset == row.dataset && p.point == point && p.baseline == b;
+          return p.scenario == row.scenario && p.dataset == row.dataset && p.point == point && p.algo == x &&
+                 p.baseline == y;
         });
         if (it == s.poi.end() || std::isnan(it->p)) out << " — |";
         else

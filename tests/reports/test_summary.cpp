@@ -243,8 +243,12 @@ TEST(SummaryWithANonPaperAlgorithm, IsAColumnButNotABaselineNorPartOfTheClaims) 
   const Summary s = build_summary(sweep);
   ASSERT_EQ(s.rows.size(), 1u);
   EXPECT_EQ(*s.rows[0].best, "rapid-rl-return");
+  // RAPID-RL against the paper's rlpd and ddpg; the variant against RAPID-RL (both its seeds above).
+  ASSERT_EQ(s.poi.size(), 3u);
   for (const PoiEntry& p : s.poi) EXPECT_NE(p.baseline, "rapid-rl-return");
-  EXPECT_EQ(s.poi.size(), 2u);  // rlpd and ddpg
+  EXPECT_EQ(s.poi[2].algo, "rapid-rl-return");
+  EXPECT_EQ(s.poi[2].baseline, "rapid-rl");
+  EXPECT_DOUBLE_EQ(s.poi[2].p, 1.0);
   EXPECT_EQ(s.aggregate.back().algo, "rapid-rl-return");
 
   const std::string md = table_markdown(s);
@@ -252,7 +256,8 @@ TEST(SummaryWithANonPaperAlgorithm, IsAColumnButNotABaselineNorPartOfTheClaims) 
   EXPECT_NE(md.find("| Pendulum | Initial | 10.50 ± 0.50 | 5.50 ± 0.50 | 3.50 ± 0.50 | **20.50 ± 0.50** |"),
             std::string::npos)
       << md;
-  EXPECT_NE(md.find("| Scenario | Dataset | vs RLPD | vs DDPG |\n"), std::string::npos) << md;
+  EXPECT_NE(md.find("| Scenario | Dataset | vs RLPD | vs DDPG | RAPID-RL (return) vs RAPID-RL |\n"), std::string::npos) << md;
+  EXPECT_NE(md.find("| Pendulum | Initial | 1.00 ["), std::string::npos) << md;
   EXPECT_NE(md.find("| RAPID-RL (return) | 20.50 |"), std::string::npos) << md;
   EXPECT_NE(table_latex(s).find("Dataset & RAPID-RL & RLPD & DDPG & RAPID-RL (return) \\\\"), std::string::npos);
   EXPECT_NE(table_csv(s).find(",rapid-rl-return_mean,"), std::string::npos);
