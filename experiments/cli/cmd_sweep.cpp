@@ -17,6 +17,7 @@
 #include "experiments/sweep/lock.hpp"
 #include "experiments/sweep/process_pool.hpp"
 #include "experiments/sweep/progress.hpp"
+#include "experiments/sweep/reuse_datasets.hpp"
 #include "experiments/sweep/selection.hpp"
 #include "experiments/sweep/slurm_backend.hpp"
 #include "experiments/sweep/slurm_task.hpp"
@@ -36,6 +37,7 @@ struct SweepOptions {
   bool no_summary = false;
   bool no_animations = false;
   std::string job_timeout;  // local: e.g. 90s, 45m, 2h; empty: no limit
+  std::string reuse_datasets;  // another sweep folder whose references and datasets to start from
   // --backend slurm (sweep/slurm_backend.hpp)
   SlurmOptions slurm;
   bool dry_run = false;
@@ -111,6 +113,22 @@ void print_slurm_plan(const SweepFolder& folder, const SlurmPlan& plan, const Sl
 
 // --backend slurm: prepare the folder like the local backend, then submit the job arrays
 // (sweep/slurm_backend.hpp) and return without waiting. The lock is held only while submitting; the tasks share it.
+// --reuse-datasets FROM, once the folder is ours (locked, grid.json written): copies what FROM
+// built for this grid's inputs and says what it took.
+void reuse_datasets_from(const SweepOptions& o, const SweepFolder& folder) {
+  if (o.reuse_datasets.empty()) return;
+  ReuseReport r;
+  try {
+    r = reuse_datasets(folder, o.reuse_datasets);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("--reuse-datasets: " + std::string(e.what()));
+  }
+  std::cerr << "rapid sweep: reused the references and datasets of " << r.copied.size() << " of "
+            << r.copied.size() + r.present.size() + r.stale.size() << " scenario builds from " << o.reuse_datasets
+            << (r.present.empty() ? "" : "; " + std::to_string(r.present.size()) + " already here")
+            << (r.stale.empty() ? "" : "; " + std::to_string(r.stale.size()) + " not done there for this grid's reference settings, built here") << "\n";
+}
+
 int submit_to_slurm(const SweepOptions& o, SweepFolder& folder, const Selection& selection) {
   if (o.jobs > 0)
     throw UsageError("--jobs: the slurm backend runs each job as an array task; use --array-parallelism to limit them");
@@ -143,6 +161,7 @@ int submit_to_slurm(const SweepOptions& o, SweepFolder& folder, const Selection&
   make_output_folder(dir, out_option(o, dir));
   const auto lock = lock_folder(dir);
   update_grid_file(folder, std::cerr);
+  reuse_datasets_from(o, folder);
   SlurmPlan plan = plan_slurm_sweep(folder, selection, o.force);
   if (plan.arrays.empty()) {
     std::cout << "sweep " << dir.string() << ": nothing to submit, all " << plan.needed << " jobs are done\n";
@@ -187,6 +206,13 @@ int sweep_command(const SweepOptions& o) {
     throw UsageError("--backend: '" + o.backend + "' is not available; expected local or slurm");
   if (o.out_given && o.out.empty()) throw UsageError("--out: must name a folder, got an empty path");
   const fs::path dir = o.out_given ? fs::path(o.out) : fs::path("results") / grid.name;
+  if (!o.reuse_datasets.empty()) {  // a wrong FROM is refused before this sweep's folder is made
+    try {
+      open_sweep_folder(o.reuse_datasets);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError("--reuse-datasets: " + std::string(e.what()));
+    }
+  }
   SweepFolder folder = make_sweep_folder(dir, grid);
   LocalSweepOptions options;
   try {
@@ -211,6 +237,7 @@ int sweep_command(const SweepOptions& o) {
   make_output_folder(dir, out_option(o, dir));
   const auto lock = lock_folder(dir);
   update_grid_file(folder, std::cerr);
+  reuse_datasets_from(o, folder);
 
   std::cerr << "rapid sweep: " << grid.name << " → " << dir.string() << " (" << options.workers << " worker"
             << (options.workers == 1 ? "" : "s") << (o.only.empty() ? "" : ", only " + o.only)
@@ -247,6 +274,9 @@ Command add_sweep_command(CLI::App& parent) {
       ->check(CLI::Range(1, 1024));
   sub->add_option("--only", o->only, "run a subset: scenario=..,dataset=..,algo=..,seed=.. (repeat a key or use | for alternatives)");
   sub->add_flag("--force", o->force, "rerun the selected jobs even if their records are ok");
+  sub->add_option("--reuse-datasets", o->reuse_datasets,
+                  "start from another sweep folder's reference agents and datasets where it built them for this grid's "
+                  "reference settings (copied; that folder is only read)");
   sub->add_flag("--no-summary", o->no_summary, "do not refresh the reports (rapid summarize) at the end");
   sub->add_flag("--no-animations", o->no_animations, "refresh the reports without the animations");
   sub->add_option("--backend", o->backend, "where jobs run: local (this machine) or slurm (submit job arrays)");
