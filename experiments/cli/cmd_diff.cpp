@@ -77,7 +77,7 @@ int diff_command(const DiffCliOptions& o) {
   }
   if (!result.differences.empty()) {
     print_differences(result);
-    std::cout << result.differences.size() << " of " << summary.cells.size() << " cells differ from " << o.baseline
+    std::cout << result.differences.size() << " of " << result.cells << " cells differ from " << o.baseline
               << (o.stat ? " (--stat)" : " (rtol " + std::to_string(o.rtol) + ")") << "\n";
     return kExitFailed;
   }

@@ -136,6 +136,7 @@ DiffResult diff_against_baseline(const Summary& s, const nlohmann::json& baselin
   }
   for (const auto& [key, numbers] : base)
     result.differences.push_back({key, describe(numbers), "—", "cell missing from the sweep"});
+  result.cells = s.cells.size() + base.size();
   return result;
 }
 

@@ -38,6 +38,7 @@ struct CellDifference {
 struct DiffResult {
   std::string schema_error;  // set when the baseline is not a rapid.baseline/1 document
   std::size_t cells_compared = 0;
+  std::size_t cells = 0;  // in the sweep or the baseline: a cell only the baseline has counts too
   std::vector<CellDifference> differences;
   bool ok() const { return schema_error.empty() && differences.empty(); }
 };

@@ -155,6 +155,9 @@ TEST_F(ReportCliTest, DiffFailsOnACellMissingOnEitherSide) {
   EXPECT_NE(out.text.find("missing from the baseline"), std::string::npos) << out.text;
   EXPECT_NE(out.text.find("pendulum/final/rapid-rl"), std::string::npos) << out.text;
   EXPECT_NE(out.text.find("missing from the sweep"), std::string::npos) << out.text;
+  // The sweep's cells and the one only the baseline has: two of them differ.
+  const std::string count = "2 of " + std::to_string(b["cells"].size() + 1) + " cells differ";
+  EXPECT_NE(out.text.find(count), std::string::npos) << out.text;
 }
 
 TEST_F(ReportCliTest, DiffFailsOnAWrongSchema) {
