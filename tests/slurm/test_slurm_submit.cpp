@@ -40,6 +40,24 @@ class SlurmSubmit : public ::testing::Test {
   json grid_;
 };
 
+// Axes (docs/sweeps.md §Axes): RAPID-RL's cells run at every ε, DDPG's once; --only by value.
+TEST_F(SlurmSubmit, DryRunListsTheAxisJobsOnceEachAndOnlySelectsByValue) {
+  grid_["axes"] = {{"epsilon", {-0.5, 0.3}}};
+  write_json(grid_path_, grid_);
+  const Result r = sweep("--dry-run");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const std::string cell : {"pendulum/initial/rapid-rl/epsilon=-0.5/seed0", "pendulum/initial/rapid-rl/epsilon=-0.5/seed1",
+                                 "pendulum/initial/rapid-rl/epsilon=0.3/seed0", "pendulum/initial/rapid-rl/epsilon=0.3/seed1",
+                                 "pendulum/none/ddpg/seed0", "pendulum/none/ddpg/seed1"})
+    EXPECT_EQ(occurrences(r.output, ": " + cell + "\n"), 1u) << cell << "\n" << r.output;
+  EXPECT_EQ(occurrences(r.output, "pendulum/reference\n"), 1u) << r.output;
+  const Result only = sweep("--dry-run --only epsilon=0.3,algo=rapid-rl");
+  ASSERT_EQ(only.exit_code, 0) << only.output;
+  EXPECT_EQ(occurrences(only.output, "epsilon=0.3/seed"), 2u) << only.output;
+  EXPECT_EQ(occurrences(only.output, "epsilon=-0.5"), 0u) << only.output;
+  EXPECT_FALSE(fs::exists(sweep_)) << "a dry run writes nothing";
+}
+
 TEST_F(SlurmSubmit, DryRunPrintsThrottledArraysChainedWithAfterokAndWritesNothing) {
   const Result r = sweep("--dry-run --array-parallelism 3 --partition short --time 0:10:00 --sbatch-arg=--mem=2G");
   ASSERT_EQ(r.exit_code, 0) << r.output;
