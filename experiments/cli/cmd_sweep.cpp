@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <iostream>
+#include <optional>
 #include <regex>
 #include <thread>
 
@@ -111,25 +112,35 @@ void print_slurm_plan(const SweepFolder& folder, const SlurmPlan& plan, const Sl
   }
 }
 
-// --backend slurm: prepare the folder like the local backend, then submit the job arrays
-// (sweep/slurm_backend.hpp) and return without waiting. The lock is held only while submitting; the tasks share it.
-// --reuse-datasets FROM, once the folder is ours (locked, grid.json written): copies what FROM
-// built for this grid's inputs and says what it took.
-void reuse_datasets_from(const SweepOptions& o, const SweepFolder& folder) {
-  if (o.reuse_datasets.empty()) return;
-  ReuseReport r;
+// --reuse-datasets FROM, opened before this sweep's folder is made, so a wrong FROM leaves
+// nothing behind: another sweep folder. Empty without the option.
+std::optional<SweepFolder> reuse_source(const SweepOptions& o, const fs::path& dir) {
+  if (o.reuse_datasets.empty()) return std::nullopt;
   try {
-    r = reuse_datasets(folder, o.reuse_datasets);
+    std::error_code not_there;
+    if (fs::equivalent(o.reuse_datasets, dir, not_there))
+      throw std::invalid_argument("'" + o.reuse_datasets + "' is the sweep folder itself");
+    return open_sweep_folder(o.reuse_datasets);
   } catch (const std::invalid_argument& e) {
     throw UsageError("--reuse-datasets: " + std::string(e.what()));
   }
+}
+
+// Once the folder is ours (locked, grid.json written): copies what FROM built for this grid's
+// inputs and says what it took.
+void reuse_datasets_from(const std::optional<SweepFolder>& source, const SweepFolder& folder) {
+  if (!source) return;
+  const ReuseReport r = reuse_datasets(folder, *source);
   std::cerr << "rapid sweep: reused the references and datasets of " << r.copied.size() << " of "
-            << r.copied.size() + r.present.size() + r.stale.size() << " scenario builds from " << o.reuse_datasets
+            << r.copied.size() + r.present.size() + r.stale.size() << " scenario builds from " << source->dir.string()
             << (r.present.empty() ? "" : "; " + std::to_string(r.present.size()) + " already here")
             << (r.stale.empty() ? "" : "; " + std::to_string(r.stale.size()) + " not done there for this grid's reference settings, built here") << "\n";
 }
 
-int submit_to_slurm(const SweepOptions& o, SweepFolder& folder, const Selection& selection) {
+// --backend slurm: prepare the folder like the local backend, then submit the job arrays
+// (sweep/slurm_backend.hpp) and return without waiting. The lock is held only while submitting; the tasks share it.
+int submit_to_slurm(const SweepOptions& o, SweepFolder& folder, const Selection& selection,
+                    const std::optional<SweepFolder>& source) {
   if (o.jobs > 0)
     throw UsageError("--jobs: the slurm backend runs each job as an array task; use --array-parallelism to limit them");
   try {
@@ -161,7 +172,7 @@ int submit_to_slurm(const SweepOptions& o, SweepFolder& folder, const Selection&
   make_output_folder(dir, out_option(o, dir));
   const auto lock = lock_folder(dir);
   update_grid_file(folder, std::cerr);
-  reuse_datasets_from(o, folder);
+  reuse_datasets_from(source, folder);
   SlurmPlan plan = plan_slurm_sweep(folder, selection, o.force);
   if (plan.arrays.empty()) {
     std::cout << "sweep " << dir.string() << ": nothing to submit, all " << plan.needed << " jobs are done\n";
@@ -206,13 +217,7 @@ int sweep_command(const SweepOptions& o) {
     throw UsageError("--backend: '" + o.backend + "' is not available; expected local or slurm");
   if (o.out_given && o.out.empty()) throw UsageError("--out: must name a folder, got an empty path");
   const fs::path dir = o.out_given ? fs::path(o.out) : fs::path("results") / grid.name;
-  if (!o.reuse_datasets.empty()) {  // a wrong FROM is refused before this sweep's folder is made
-    try {
-      open_sweep_folder(o.reuse_datasets);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError("--reuse-datasets: " + std::string(e.what()));
-    }
-  }
+  const std::optional<SweepFolder> source = reuse_source(o, dir);
   SweepFolder folder = make_sweep_folder(dir, grid);
   LocalSweepOptions options;
   try {
@@ -222,7 +227,7 @@ int sweep_command(const SweepOptions& o) {
   }
   if (o.backend == "slurm") {
     if (!o.job_timeout.empty()) throw UsageError("--job-timeout is for the local backend; with --backend slurm use --time");
-    return submit_to_slurm(o, folder, options.selection);
+    return submit_to_slurm(o, folder, options.selection, source);
   }
   if (!o.job_timeout.empty()) options.job_timeout_s = parse_job_timeout(o.job_timeout);
   if (o.slurm_option_given || o.dry_run)
@@ -237,7 +242,7 @@ int sweep_command(const SweepOptions& o) {
   make_output_folder(dir, out_option(o, dir));
   const auto lock = lock_folder(dir);
   update_grid_file(folder, std::cerr);
-  reuse_datasets_from(o, folder);
+  reuse_datasets_from(source, folder);
 
   std::cerr << "rapid sweep: " << grid.name << " → " << dir.string() << " (" << options.workers << " worker"
             << (options.workers == 1 ? "" : "s") << (o.only.empty() ? "" : ", only " + o.only)

@@ -1,7 +1,5 @@
 #include "experiments/sweep/reuse_datasets.hpp"
 
-#include <stdexcept>
-
 #include "experiments/run/dataset_build.hpp"
 #include "experiments/sweep/graph.hpp"
 
@@ -24,11 +22,7 @@ void copy_folder(const fs::path& from, const fs::path& to) {
 
 }  // namespace
 
-ReuseReport reuse_datasets(const SweepFolder& folder, const fs::path& from) {
-  const SweepFolder source = open_sweep_folder(from);
-  std::error_code same_error;
-  if (fs::equivalent(from, folder.dir, same_error))
-    throw std::invalid_argument("'" + from.string() + "' is the sweep folder itself");
+ReuseReport reuse_datasets(const SweepFolder& folder, const SweepFolder& source) {
   // FROM's folders judged with this sweep's grid: done there means built for exactly these inputs.
   const SweepFolder as_this_grid = make_sweep_folder(source.dir, folder.grid);
   ReuseReport report;

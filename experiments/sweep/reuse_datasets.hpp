@@ -22,8 +22,7 @@ struct ReuseReport {
 // Copies, for each reference and dataset job of `folder`'s graph that FROM has done for the
 // same inputs, its dataset folder (datasets/[<point>/]<scenario>/) and both job folders. Each
 // folder is copied next to its place and renamed into it, so a failure leaves nothing half
-// copied. Throws std::invalid_argument (one line) if FROM is not a sweep folder or is the sweep
-// folder itself.
-ReuseReport reuse_datasets(const SweepFolder& folder, const std::filesystem::path& from);
+// copied. `source` is FROM opened as a sweep folder (open_sweep_folder), not `folder` itself.
+ReuseReport reuse_datasets(const SweepFolder& folder, const SweepFolder& source);
 
 }  // namespace rapid

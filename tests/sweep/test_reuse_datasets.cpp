@@ -47,7 +47,7 @@ TEST_F(ReuseDatasets, ASweepWithTheSameReferenceTrainsNoReferenceAndFromIsOnlyRe
   EXPECT_FALSE(fs::exists(from / "jobs/pendulum/initial")) << "FROM gained cells";
 
   // Asked again, it finds its own copy and leaves it alone.
-  const ReuseReport again = reuse_datasets(open_sweep_folder(sweep), from);
+  const ReuseReport again = reuse_datasets(open_sweep_folder(sweep), open_sweep_folder(from));
   EXPECT_TRUE(again.copied.empty());
   EXPECT_EQ(again.present, (std::vector<std::string>{"pendulum/datasets"}));
 }
@@ -55,7 +55,7 @@ TEST_F(ReuseDatasets, ASweepWithTheSameReferenceTrainsNoReferenceAndFromIsOnlyRe
 TEST_F(ReuseDatasets, DatasetsBuiltForOtherReferenceSettingsAreNotTaken) {
   nlohmann::json other = pendulum_grid("reuse", {"rapid-rl", "ddpg"}, {0}, 600);
   other["reference"]["seed"] = 1001;
-  const ReuseReport r = reuse_datasets(make_sweep_folder(sweep, parse_grid(other, "other.json")), from);
+  const ReuseReport r = reuse_datasets(make_sweep_folder(sweep, parse_grid(other, "other.json")), open_sweep_folder(from));
   EXPECT_TRUE(r.copied.empty());
   EXPECT_EQ(r.stale, (std::vector<std::string>{"pendulum/datasets"}));
   EXPECT_FALSE(fs::exists(sweep / "datasets"));
