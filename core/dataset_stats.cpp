@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-#include <string>
 
 #include "core/replay_buffer.hpp"
 
@@ -125,7 +124,6 @@ DatasetStats dataset_stats_with_edges(const Dataset& dataset, std::vector<double
 }
 
 std::vector<double> imitated_shares(const Dataset& dataset, std::span<const double> epsilons, int return_window) {
-  if (return_window < 1) throw std::invalid_argument("return window must be at least 1, got " + std::to_string(return_window));
   const ReplayBuffer buffer = make_prior_buffer(dataset, return_window);
   std::vector<std::size_t> above(epsilons.size(), 0);
   for (std::size_t i = 0; i < buffer.size(); ++i) {

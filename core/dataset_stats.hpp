@@ -57,7 +57,8 @@ DatasetStats dataset_stats_with_edges(const Dataset& dataset, std::vector<double
 // For each threshold ε, the share of transitions RAPID-RL imitates: those whose weight
 // relu(Ḡ − ε) is positive, Ḡ being the mean reward over `return_window` decisions of the episode as
 // the prior buffer computes it (1: the step's own reward, the paper's rule; rapid-rl-return: its
-// return_horizon). Throws std::invalid_argument for an empty dataset or a window below 1.
+// return_horizon). Throws std::invalid_argument for an empty dataset or a window below 1 (both
+// refused by the buffer it is computed with, make_prior_buffer).
 std::vector<double> imitated_shares(const Dataset& dataset, std::span<const double> epsilons, int return_window = 1);
 
 }  // namespace rapid
