@@ -164,14 +164,13 @@ void build_poi(Summary& s) {
     const CellSummary* ours = s.column_cell(row, "rapid-rl");
     if (!ours) continue;
     // x beats y: RAPID-RL a paper baseline, or a variant the paper does not have RAPID-RL.
-    auto compare = [&](const std::string& x_algo, const CellSummary& x, const std::string& y_algo,
-                       const CellSummary& y, const std::string& key) {
+    auto compare = [&](const CellSummary& x, const CellSummary& y, const std::string& key) {
       PoiEntry e;
       e.scenario = row.scenario;
       e.dataset = row.dataset;
       e.point = point_label(row.axis);
-      e.algo = x_algo;
-      e.baseline = y_algo;
+      e.algo = x.algo;
+      e.baseline = y.algo;
       e.n_x = x.n_ok;
       e.n_y = y.n_ok;
       e.p = probability_of_improvement(x.finals, y.finals);
@@ -185,9 +184,9 @@ void build_poi(Summary& s) {
       s.poi.push_back(e);
     };
     for (const auto& [algo, index] : row.cells)
-      if (is_paper_baseline(algo)) compare("rapid-rl", *ours, algo, s.cells[index], algo);
+      if (is_paper_baseline(algo)) compare(*ours, s.cells[index], algo);
     for (const auto& [algo, index] : row.cells)
-      if (!find_algorithm(algo).in_paper) compare(algo, s.cells[index], "rapid-rl", *ours, algo + ">rapid-rl");
+      if (!find_algorithm(algo).in_paper) compare(s.cells[index], *ours, algo + ">rapid-rl");
   }
 }
 
