@@ -25,6 +25,17 @@ ActorCritic::ActorCritic(int obs_dim, int act_dim, const AgentConfig& config, st
 
 void ActorCritic::bc_weights(const Batch& batch, RowVec& w) const { w.setZero(batch.size()); }
 
+namespace {
+
+// The means of `v` over its first `n_prior` entries and over the rest; NaN for an empty part.
+void split_means(const RowVec& v, int n_prior, float& prior, float& online) {
+  const int b = static_cast<int>(v.size());
+  prior = n_prior > 0 ? v.head(n_prior).mean() : std::numeric_limits<float>::quiet_NaN();
+  online = n_prior < b ? v.tail(b - n_prior).mean() : std::numeric_limits<float>::quiet_NaN();
+}
+
+}  // namespace
+
 const Mat& ActorCritic::act(const ConstVecRef& obs) {
   if (acting_actor_stale_) {
     acting_actor_.params() = actor_.params();
@@ -69,16 +80,20 @@ float ActorCritic::actor_objective(const Batch& batch, UpdateStats& stats, std::
   // −λ·(1/B) Σ Q(s, π(s)): back-propagate through the critic into the action, not its weights.
   dq_.setConstant(1, b, -lambda / static_cast<float>(b));
   dpi_ = critic_.backward(dq_, Grads::kInputOnly).bottomRows(act_dim_);
+  // Each column of dpi_ is now −(λ/B)·∂Q/∂a: B times its norm is the sample's Q-term gradient.
+  grad_norm_ = dpi_.colwise().norm() * static_cast<float>(b);
+  const int n_prior = batch.prior_count;
+  split_means(grad_norm_, n_prior, stats.q_grad_prior, stats.q_grad_online);
 
   // The imitation term (1/B) Σ w_i ‖π(s_i) − a_i‖², the only place the algorithms differ.
   bc_weights(batch, w_);
   sq_err_ = (pi_ - batch.act).colwise().squaredNorm();
   const float bc = (w_.array() * sq_err_.array()).sum() / static_cast<float>(b);
   dpi_ += ((pi_ - batch.act).array().rowwise() * w_.array()).matrix() * (2.0f / static_cast<float>(b));
+  grad_norm_ = 2.0f * w_.array().abs() * sq_err_.array().sqrt();
+  split_means(grad_norm_, n_prior, stats.bc_grad_prior, stats.bc_grad_online);
 
-  const int n_prior = batch.prior_count;
-  stats.bc_prior = n_prior > 0 ? sq_err_.head(n_prior).mean() : std::numeric_limits<float>::quiet_NaN();
-  stats.bc_online = n_prior < b ? sq_err_.tail(b - n_prior).mean() : std::numeric_limits<float>::quiet_NaN();
+  split_means(sq_err_, n_prior, stats.bc_prior, stats.bc_online);
   stats.bc_term = bc;
   stats.q_weight = lambda;
   stats.actor_loss = -lambda * q.mean() + bc;

@@ -31,6 +31,11 @@ struct UpdateStats {
   float q_mean = 0.0f;          // mean Q(s, a) over the batch
   float bc_prior = 0.0f;        // mean ‖π(s) − a‖² over the prior columns (NaN if none)
   float bc_online = 0.0f;       // mean ‖π(s) − a‖² over the online columns
+  // The sizes of the two forces on the actor, at its output: per sample, the gradient of the Q
+  // term, λ‖∂Q(s, a)/∂a‖ at a = π(s), and of the imitation term, ‖2·w·(π(s) − a)‖, each averaged
+  // over the prior columns and over the online columns (NaN for a half the batch does not have).
+  float q_grad_prior = 0.0f, q_grad_online = 0.0f;
+  float bc_grad_prior = 0.0f, bc_grad_online = 0.0f;
   bool finite = true;           // false if a loss came out NaN or inf
 };
 
@@ -94,7 +99,7 @@ class ActorCritic {
   Adam actor_opt_, critic_opt_;
   // Preallocated per-update buffers.
   Mat sa_, pi_, dpi_, dq_, single_obs_;
-  RowVec y_, w_, sq_err_;
+  RowVec y_, w_, sq_err_, grad_norm_;
 };
 
 }  // namespace rapid

@@ -26,6 +26,7 @@ using Metadata = std::map<std::string, std::string>;
 namespace meta {
 inline constexpr const char* kScenario = "scenario";
 inline constexpr const char* kSourceCheckpoint = "source_checkpoint";
+inline constexpr const char* kSourceUpdates = "source_updates";  // gradient steps the source actor had
 inline constexpr const char* kSeed = "seed";
 inline constexpr const char* kConfigHash = "config_hash";
 inline constexpr const char* kCodeRevision = "code_revision";

@@ -13,7 +13,8 @@ namespace rapid {
 namespace {
 constexpr float kLayerNormEps = 1e-5f;
 constexpr char kMagic[8] = {'R', 'A', 'P', 'I', 'D', 'M', 'L', 'P'};
-constexpr std::uint32_t kFormatVersion = 1;
+// Format 2 added the update count after the version; format 1 files still load.
+constexpr std::uint32_t kFormatVersion = 2;
 
 const char* kind_name(LayerKind k) {
   switch (k) {
@@ -263,10 +264,11 @@ void Mlp::soft_update_from(const Mlp& source, float tau) {
   params_ = tau * source.params_ + (1.0f - tau) * params_;
 }
 
-void Mlp::save(const std::string& path) const {
+void Mlp::save(const std::string& path, std::int64_t updates) const {
   std::string buf(kMagic, sizeof kMagic);
   auto put = [&buf](const auto& v) { buf.append(reinterpret_cast<const char*>(&v), sizeof v); };
   put(kFormatVersion);
+  put(updates);
   put(static_cast<std::int32_t>(input_dim_));
   put(static_cast<std::int32_t>(specs_.size()));
   for (const LayerSpec& s : specs_) {
@@ -279,7 +281,7 @@ void Mlp::save(const std::string& path) const {
   write_file_atomic(path, buf);
 }
 
-Mlp Mlp::load(const std::string& path) {
+Mlp Mlp::load(const std::string& path, std::int64_t* updates) {
   const std::string buf = read_file(path);
   std::size_t pos = 0;
   auto fail = [&path](const std::string& why) -> void {
@@ -295,7 +297,12 @@ Mlp Mlp::load(const std::string& path) {
   pos = sizeof kMagic;
   std::uint32_t version = 0;
   get(version);
-  if (version != kFormatVersion) fail("unsupported format version " + std::to_string(version));
+  if (version != 1 && version != kFormatVersion) fail("unsupported format version " + std::to_string(version));
+  std::int64_t stored_updates = -1;
+  if (version >= 2) {
+    get(stored_updates);
+    if (stored_updates < 0) fail("corrupt header (negative update count)");
+  }
   std::int32_t input_dim = 0, n_layers = 0;
   get(input_dim);
   get(n_layers);
@@ -320,6 +327,7 @@ Mlp Mlp::load(const std::string& path) {
   std::uint64_t stored = 0;
   get(stored);
   if (stored != expected) fail("checksum mismatch (corrupt file)");
+  if (updates != nullptr) *updates = stored_updates;
   return net;
 }
 

@@ -71,10 +71,13 @@ class Mlp {
   // this ← τ·source + (1−τ)·this (source must have the same architecture).
   void soft_update_from(const Mlp& source, float tau);
 
-  // Binary checkpoint: architecture and parameters; load() checks the file fully and throws
-  // std::runtime_error naming the problem. save() writes atomically (temp file + rename).
-  void save(const std::string& path) const;
-  static Mlp load(const std::string& path);
+  // Binary checkpoint: architecture, parameters and `updates`, the number of gradient steps that
+  // made them (what a reader needs to know the network has learned at all); load() checks the
+  // file fully and throws std::runtime_error naming the problem, and puts the count in *updates
+  // (-1 for a checkpoint of format 1, which predates the count). save() writes atomically (temp
+  // file + rename).
+  void save(const std::string& path, std::int64_t updates) const;
+  static Mlp load(const std::string& path, std::int64_t* updates = nullptr);
 
  private:
   // Activations live in acts_, a layer names its buffers by index (so `=` copies stay valid).

@@ -78,7 +78,7 @@ void ReplayBuffer::sample_into(Rng& rng, Batch& batch, int first, int count) con
 
 void SymmetricSampler::sample(Rng& rng, Batch& batch) const {
   const int b = batch.size();
-  const int n_prior = prior_ ? b / 2 : 0;
+  const int n_prior = b - online_count(b);
   if (prior_) prior_->sample_into(rng, batch, 0, n_prior);
   online_->sample_into(rng, batch, n_prior, b - n_prior);
   batch.prior_count = n_prior;

@@ -361,3 +361,56 @@ TEST(ActorCritic, UpdateReducesCriticLossOnAFixedBatch) {
   EXPECT_LT(last, 0.1f * first);
   EXPECT_TRUE(a->parameters_finite());
 }
+
+// The gradient diagnostics of an update (UpdateStats, issue: the two forces on the actor): per
+// sample, the Q term's gradient at the actor's output is ‖∂Q(s, a)/∂a‖ at a = π(s) (λ = 1 here),
+// checked against central differences of the critic in its action inputs; the imitation term's is
+// ‖2·w·(π(s) − a)‖; each averaged over the prior columns and over the online columns.
+TEST(GradientDiagnostics, AreTheNormsOfBothTermsAtTheActorsOutputPerHalf) {
+  const Batch batch = hand_made_batch();
+  for (const std::string name : {"rapid-rl", "col-all", "ddpg"}) {
+    auto measured = perturbed_agent(name, small_config());
+    auto reference = perturbed_agent(name, small_config());
+    const Mat pi = reference->actor().forward(batch.obs);
+    Mat sa(kObs + kAct, kBatch);
+    sa << batch.obs, pi;
+    std::vector<double> q_norm(kBatch), bc_norm(kBatch);
+    for (int i = 0; i < kBatch; ++i) {
+      double sq = 0;
+      for (int j = 0; j < kAct; ++j) {
+        float* v = &sa(kObs + j, i);
+        const float saved = *v;
+        const float h = 1e-3f;
+        *v = saved + h;
+        const double up = reference->critic().forward(sa)(0, i);
+        *v = saved - h;
+        const double down = reference->critic().forward(sa)(0, i);
+        *v = saved;
+        sq += std::pow((up - down) / (2.0 * h), 2);
+      }
+      q_norm[i] = std::sqrt(sq);
+      // The imitation weight of each algorithm: RAPID-RL relu(r − ε), CoL-all λ_BC, DDPG none.
+      const double w = name == "rapid-rl" ? std::max(0.0f, batch.rew[i] + 0.15f) : name == "col-all" ? 1.0 : 0.0;
+      bc_norm[i] = 2.0 * w * (pi.col(i) - batch.act.col(i)).norm();
+    }
+    auto half_mean = [](const std::vector<double>& v, int from, int to) {
+      double s = 0;
+      for (int i = from; i < to; ++i) s += v[i];
+      return s / (to - from);
+    };
+    const UpdateStats s = measured->update(batch);
+    const int p = batch.prior_count;
+    EXPECT_NEAR(s.q_grad_prior, half_mean(q_norm, 0, p), 2e-3 + 2e-2 * half_mean(q_norm, 0, p)) << name;
+    EXPECT_NEAR(s.q_grad_online, half_mean(q_norm, p, kBatch), 2e-3 + 2e-2 * half_mean(q_norm, p, kBatch)) << name;
+    EXPECT_NEAR(s.bc_grad_prior, half_mean(bc_norm, 0, p), 1e-5) << name;
+    EXPECT_NEAR(s.bc_grad_online, half_mean(bc_norm, p, kBatch), 1e-5) << name;
+    EXPECT_GT(s.q_grad_prior, 0.0f) << name;
+  }
+  // A batch without prior columns has no prior half: NaN, as for the BC losses.
+  Batch online = batch;
+  online.prior_count = 0;
+  const UpdateStats s = perturbed_agent("ddpg", small_config())->update(online);
+  EXPECT_TRUE(std::isnan(s.q_grad_prior));
+  EXPECT_TRUE(std::isnan(s.bc_grad_prior));
+  EXPECT_FALSE(std::isnan(s.q_grad_online));
+}

@@ -2,6 +2,7 @@
 // datasets with their metadata, and reuse of up-to-date stages.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -9,6 +10,7 @@
 #include "core/dataset_io.hpp"
 #include "core/dataset_mix.hpp"
 #include "core/dataset_stats.hpp"
+#include "core/mlp.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
 
@@ -59,6 +61,17 @@ TEST(DatasetBuild, WritesCheckpointsDatasetsAndReusesThem) {
   EXPECT_EQ(initial.metadata.at("scenario"), "pendulum");
   EXPECT_EQ(initial.metadata.at("seed"), "1000");
   EXPECT_NE(initial.metadata.at("source_checkpoint").find("actor_200"), std::string::npos);
+  // Read back what the source actors had learned: `initial` at decision 200 is the first decision
+  // after the warm-up (200), so one update; `medium` at 1,000 has 801; the metadata says the same.
+  std::int64_t updates = -1;
+  Mlp::load(out + "/reference/actor_200.ckpt", &updates);
+  EXPECT_EQ(updates, 1);
+  Mlp::load(out + "/reference/actor_1000.ckpt", &updates);
+  EXPECT_EQ(updates, 801);
+  Mlp::load(out + "/reference/actor.ckpt", &updates);
+  EXPECT_EQ(updates, 1801);
+  EXPECT_EQ(initial.metadata.at("source_updates"), "1");
+  EXPECT_EQ(mixed.metadata.at("source_updates"), "final 1801, medium 801");
   EXPECT_FALSE(initial.metadata.at("code_revision").empty());
   // Half of each source in whole episodes: up to the first episode end at or past N/2.
   const Dataset medium = read_dataset(out + "/medium.h5");
@@ -112,6 +125,56 @@ TEST(DatasetBuild, AReferenceLongerThanTheBudgetCheckpointsAtTheBudgetsFractions
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.text.find("reference.steps: 1500 is below the cells' budget of 2000 steps"), std::string::npos) << bad.text;
   EXPECT_FALSE(fs::exists(dir.file("d2")));
+}
+
+// The bug of the first flow reproduction: `initial` taken at T/10 before the reference's first
+// update (warm-up 5,000 > 2,500) held the untrained actor. Such a build is refused before anything
+// runs, from `dataset build` and from a sweep; and a checkpoint that says it had no update is
+// refused when it is rolled out.
+TEST(DatasetBuild, ASourceBeforeTheFirstUpdateIsRefused) {
+  rapid::testing::ScratchDir dir;
+  write_grid(dir.file("grid.json"), 400);
+  nlohmann::json grid = nlohmann::json::parse(read_file(dir.file("grid.json")));
+  grid["config"]["warmup_steps"] = 500;  // initial at 200 precedes the first update at 500
+  write_file_atomic(dir.file("grid.json"), grid.dump());
+  const std::string message =
+      "the reference's initial actor (decision 200 of the budget of 2000) precedes its first update (decision 500: "
+      "warmup_steps 500, batch_size 128) and would be untrained";
+  const auto bad = rapid_cli("dataset build --scenario pendulum --grid " + dir.file("grid.json") + " --dir " + dir.file("d"),
+                             /*with_stderr=*/true);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.text.find(message), std::string::npos) << bad.text;
+  EXPECT_EQ(std::count(bad.text.begin(), bad.text.end(), '\n'), 1) << bad.text;
+  EXPECT_FALSE(fs::exists(dir.file("d")));
+  const auto sweep = rapid_cli("sweep " + dir.file("grid.json") + " --out " + dir.file("s"), /*with_stderr=*/true);
+  EXPECT_EQ(sweep.exit_code, 2);
+  EXPECT_NE(sweep.text.find(message), std::string::npos) << sweep.text;
+  EXPECT_FALSE(fs::exists(dir.file("s")));
+
+  // Without a warm-up the first update is at the first full batch (128 online decisions).
+  grid["config"]["warmup_steps"] = 0;
+  grid["config"]["steps"] = 1000;  // initial at 100
+  write_file_atomic(dir.file("grid.json"), grid.dump());
+  const auto no_warmup = rapid_cli("dataset build --scenario pendulum --grid " + dir.file("grid.json") + " --dir " +
+                                   dir.file("d"), /*with_stderr=*/true);
+  EXPECT_EQ(no_warmup.exit_code, 2);
+  EXPECT_NE(no_warmup.text.find("precedes its first update (decision 128: warmup_steps 0, batch_size 128)"),
+            std::string::npos) << no_warmup.text;
+
+  // A reference checkpoint that had no update, as a build of an earlier version could leave it.
+  grid["config"]["steps"] = 2000;
+  grid["config"]["warmup_steps"] = 200;
+  write_file_atomic(dir.file("grid.json"), grid.dump());
+  const std::string cmd = "dataset build --scenario pendulum --grid " + dir.file("grid.json") + " --dir " + dir.file("d");
+  ASSERT_EQ(rapid_cli(cmd + " --reference-only").exit_code, 0);
+  const std::string ckpt = dir.file("d/pendulum/reference/actor_200.ckpt");
+  Mlp::load(ckpt).save(ckpt, 0);
+  const auto stale = rapid_cli(cmd, /*with_stderr=*/true);
+  ASSERT_EQ(stale.exit_code, 0) << stale.text;  // not trusted: the reference is trained again
+  std::int64_t updates = -1;
+  Mlp::load(ckpt, &updates);
+  EXPECT_EQ(updates, 1);
+  EXPECT_NE(stale.text.find("training the reference agent"), std::string::npos) << stale.text;
 }
 
 TEST(DatasetBuild, BadInputExitsTwo) {

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/hash.hpp"
 #include "core/mlp.hpp"
 #include "tests/finite_difference.hpp"
 
@@ -184,17 +185,45 @@ TEST_F(MlpFile, SaveLoadRoundTripsBitExactly) {
   Rng rng(3);
   net.init(rng);
   randomize(net, 8);
-  net.save(path);
-  Mlp back = Mlp::load(path);
+  net.save(path, 1234);
+  std::int64_t updates = -7;
+  Mlp back = Mlp::load(path, &updates);
+  EXPECT_EQ(updates, 1234);
   ASSERT_TRUE(back.same_architecture(net));
   EXPECT_EQ(0, std::memcmp(back.params().data(), net.params().data(), sizeof(float) * net.params().size()));
   const Mat x = Mat::Random(5, 3);
   EXPECT_EQ(back.forward(x), net.forward(x));
 }
 
+// A checkpoint written before the update count (format 1: no count after the version) still
+// loads, and says it does not know the count.
+TEST_F(MlpFile, FormatOneLoadsWithAnUnknownUpdateCount) {
+  Mlp net = Mlp::make(3, {4}, 1, false, true);
+  Rng rng(5);
+  net.init(rng);
+  net.save(path, 10);
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  // magic (8) | version (4) | updates (8) | … | checksum (8): drop the count, set version 1, re-sum.
+  std::string v1 = bytes.substr(0, 8) + std::string("\x01\x00\x00\x00", 4) + bytes.substr(20, bytes.size() - 28);
+  const std::uint64_t sum = fnv1a(v1);
+  v1.append(reinterpret_cast<const char*>(&sum), sizeof sum);
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(v1.data(), static_cast<std::streamsize>(v1.size()));
+  }
+  std::int64_t updates = 0;
+  Mlp back = Mlp::load(path, &updates);
+  EXPECT_EQ(updates, -1);
+  EXPECT_EQ(back.params(), net.params());
+}
+
 TEST_F(MlpFile, CorruptAndTruncatedFilesAreRejected) {
   Mlp net = Mlp::make(4, {8}, 1, false, false);
-  net.save(path);
+  net.save(path, 0);
   std::string bytes;
   {
     std::ifstream in(path, std::ios::binary);

@@ -7,6 +7,7 @@
 #include "core/atomic_file.hpp"
 #include "core/dataset.hpp"
 #include "core/dataset_io.hpp"
+#include "core/mlp.hpp"
 #include "envs/pendulum.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
@@ -73,6 +74,17 @@ TEST(RapidRun, WritesACompleteRecord) {
   EXPECT_TRUE(r["bc_loss"][0]["prior"].is_null());
   EXPECT_TRUE(r["bc_loss"][0]["online"].is_number());
   EXPECT_EQ(r["final"]["last_k"], 3);
+  EXPECT_FALSE(r["final"].contains("episodes"));  // no final evaluation in this config
+  // One update per decision from the end of the warm-up (200): 1,001, as the checkpoint says too.
+  EXPECT_EQ(r["updates"], 1001);
+  std::int64_t updates = -1;
+  Mlp::load(dir.file("job/actor.ckpt"), &updates);
+  EXPECT_EQ(updates, 1001);
+  // The two forces on the actor, per logging window: the Q term's gradient measured, no imitation.
+  ASSERT_EQ(r["gradients"].size(), r["bc_loss"].size());
+  EXPECT_GT(r["gradients"][0]["q_online"].get<double>(), 0);
+  EXPECT_EQ(r["gradients"][0]["bc_online"], 0.0);
+  EXPECT_TRUE(r["gradients"][0]["q_prior"].is_null());
   EXPECT_GT(r["timing"]["env_steps_per_s"].get<double>(), 0);
   EXPECT_TRUE(std::filesystem::exists(dir.file("job/actor.ckpt")));
 }
@@ -110,6 +122,28 @@ TEST(RapidRun, PriorAlgorithmReadsADatasetAndLogsBothBcLosses) {
   EXPECT_EQ(r["cell"]["dataset"], dir.file("prior.h5"));
   EXPECT_TRUE(r["bc_loss"][0]["prior"].is_number());
   EXPECT_TRUE(r["bc_loss"][0]["online"].is_number());
+  for (const char* k : {"q_prior", "q_online", "bc_prior", "bc_online"})
+    EXPECT_TRUE(r["gradients"][0][k].is_number()) << k;
+}
+
+// A config with a final evaluation (the flow profile's) reports its mean as the final return,
+// with its episodes, and keeps the last K evaluations' mean beside it.
+TEST(RapidRun, AFinalEvaluationIsTheFinalReturn) {
+  rapid::testing::ScratchDir dir;
+  const auto out = rapid_cli("run " + kShort + "--set final_eval_episodes=6 --algo ddpg --seed 3 --out " + dir.file("job"));
+  ASSERT_EQ(out.exit_code, 0) << out.text;
+  const auto r = read_record(dir.file("job"));
+  const auto& f = r["final"];
+  ASSERT_EQ(f["episodes"], 6);
+  ASSERT_EQ(f["episode_returns"].size(), 6u);
+  double sum = 0;
+  for (const auto& x : f["episode_returns"]) sum += x.get<double>();
+  EXPECT_NEAR(f["return_mean"].get<double>(), sum / 6, 1e-9);
+  EXPECT_EQ(f["last_k"], 3);
+  EXPECT_TRUE(f["last_k_mean"].is_number());
+  // The curve's last point is the final evaluation's first two episodes.
+  EXPECT_NEAR(r["eval"].back()["return_mean"].get<double>(),
+              (f["episode_returns"][0].get<double>() + f["episode_returns"][1].get<double>()) / 2, 1e-9);
 }
 
 // RAPID-RL (return) trains like RAPID-RL once it has its window; it refuses to run without the

@@ -161,6 +161,7 @@ int run_build(const BuildOptions& o) {
     for (const auto& s : o.sets) parse_set_option(s, sets);
     if (!o.grid.empty()) spec.reference = reference_for(load_grid(o.grid), o.scenario);
     spec.config = resolve_cli_config(o.scenario, o.profile, o.grid, sets);
+    check_dataset_sources(run_config_from_json(spec.config, spec.scenario), spec.reference.steps);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }

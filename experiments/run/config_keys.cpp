@@ -179,12 +179,18 @@ const std::vector<ConfigKey>& config_keys() {
                    "over the next n decisions of its episode; absent: not given, and rapid-rl-return refuses to run"),
       key("steps", &RunConfig::steps, kPositive, "environment decisions of training"),
       key("warmup_steps", &RunConfig::warmup_steps, kNonNegative,
-          "decisions of uniform-random actions, without updates, before learning starts"),
+          "decisions of uniform-random actions, without updates, before learning starts; 0: none, π(s) + noise "
+          "from the first decision (Algorithm 1). Updates start at the first decision after the warm-up at which "
+          "the online buffer holds a batch's online part (B/2 with a prior dataset, B without)"),
       key("eval_every", &RunConfig::eval_every, kPositive,
           "evaluate at the first episode boundary after every multiple of this many decisions"),
       key("eval_episodes", &RunConfig::eval_episodes, kPositive,
           "episodes per evaluation: deterministic policy, fixed evaluation seeds"),
-      key("last_k", &RunConfig::last_k, kPositive, "final performance = mean of the last K evaluations"),
+      key("last_k", &RunConfig::last_k, kPositive,
+          "without a final evaluation, the final return is the mean of the last K evaluations"),
+      optional_key("final_eval_episodes", &RunConfig::final_eval_episodes, kNonNegative, 0,
+                   "episodes of the final evaluation at the end of training (the evaluation seeds of every "
+                   "evaluation, more of them), whose mean is the final return; absent or 0: none"),
       key("bc_log_every", &RunConfig::bc_log_every, kPositive,
           "decisions per point of the logged loss curves (mean over the window's updates)"),
       key("buffer_capacity", &RunConfig::buffer_capacity, kPositive,

@@ -26,6 +26,7 @@ struct RunConfig {
   long eval_every{};
   int eval_episodes{};
   int last_k{};
+  int final_eval_episodes{};  // 0: no final evaluation (the final return is the last K evaluations' mean)
   long bc_log_every{};
   long buffer_capacity{};
   // A driving scenario's knobs. Scenario keys are the one kind a config file may leave out: a

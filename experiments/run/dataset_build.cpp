@@ -18,6 +18,7 @@
 #include "experiments/run/provenance.hpp"
 #include "experiments/run/run_config.hpp"
 #include "experiments/run/run_job.hpp"
+#include "experiments/run/trainer.hpp"
 
 namespace rapid {
 
@@ -43,6 +44,19 @@ std::vector<Source> sources(long budget, long steps) {
 
 std::string checkpoint_path(const std::string& ref_dir, long step, long steps) {
   return step == steps ? ref_dir + "/" + job_files::kActor : checkpoint_file(ref_dir, step);
+}
+
+// A checkpoint that loads and says it had at least one update; a missing, corrupt or format-1
+// checkpoint (which does not say) is not, and the reference is trained again.
+bool checkpoint_has_learned(const std::string& path) {
+  if (!fs::is_regular_file(path)) return false;
+  try {
+    std::int64_t updates = -1;
+    Mlp::load(path, &updates);
+    return updates > 0;
+  } catch (const std::exception&) {
+    return false;
+  }
 }
 
 bool record_is_done(const std::string& path, const std::string& hash) {
@@ -121,7 +135,7 @@ bool train_reference(const DatasetBuildSpec& spec, const JobSpec& ref, const std
                      const std::vector<Source>& srcs, long steps) {
   bool have_checkpoints = true;
   for (const Source& s : srcs)
-    have_checkpoints = have_checkpoints && fs::exists(checkpoint_path(ref.out_dir, s.step, steps));
+    have_checkpoints = have_checkpoints && checkpoint_has_learned(checkpoint_path(ref.out_dir, s.step, steps));
   const std::string ref_record = ref.out_dir + "/" + job_files::kRecord;
   if (!spec.force && record_is_done(ref_record, ref_hash) && have_checkpoints) return true;
   std::cerr << "dataset build: training the reference agent for " << spec.scenario << " (" << steps << " steps)\n";
@@ -146,12 +160,18 @@ std::map<std::string, Dataset> collect_sources(const DatasetBuildSpec& spec, con
   };
   for (const Source& s : srcs) {
     const std::string ckpt = checkpoint_path(folder.reference(), s.step, steps);
-    Mlp actor = Mlp::load(ckpt);
+    std::int64_t updates = -1;
+    Mlp actor = Mlp::load(ckpt, &updates);
+    // Read back what the checkpoint holds: a dataset must come from an actor that has learned.
+    if (updates <= 0)
+      throw std::runtime_error("checkpoint " + ckpt + (updates == 0 ? " holds an actor that had no update"
+                                                                    : " does not say how many updates it had"));
     const long before = index * spec.reference.transitions;
     Dataset d = collect(*env, actor, spec.reference.transitions, spec.reference.noise_std, spec.reference.seed, index++,
                         [&](long t) { report(before + t); });
     d.metadata = {{meta::kScenario, spec.scenario},
                   {meta::kSourceCheckpoint, fs::path(ckpt).filename().string() + " (step " + std::to_string(s.step) + ")"},
+                  {meta::kSourceUpdates, std::to_string(updates)},
                   {meta::kSeed, std::to_string(spec.reference.seed)},
                   {meta::kConfigHash, build_hash},
                   {meta::kCodeRevision, code_revision() + (code_dirty() ? "+dirty" : "")},
@@ -182,16 +202,32 @@ nlohmann::json check_quality(const std::string& scenario, const std::map<std::st
 
 }  // namespace
 
+void check_dataset_sources(const RunConfig& config, long reference_steps) {
+  const long budget = config.steps;
+  const long steps = reference_steps > 0 ? reference_steps : budget;
+  if (steps < budget)
+    throw std::invalid_argument("the reference's " + std::to_string(steps) + " steps are below the cells' budget of " +
+                                std::to_string(budget));
+  const long first = first_update_step(config, /*with_prior=*/false);
+  for (const Source& s : sources(budget, steps))
+    if (s.step < first)
+      throw std::invalid_argument("the reference's " + std::string(s.name) + " actor (decision " +
+                                  std::to_string(s.step) + " of the budget of " + std::to_string(budget) +
+                                  ") precedes its first update (decision " + std::to_string(first) + ": warmup_steps " +
+                                  std::to_string(config.warmup_steps) + ", batch_size " +
+                                  std::to_string(config.agent.batch_size) +
+                                  ") and would be untrained; raise steps or lower warmup_steps or batch_size");
+}
+
 int build_datasets(const DatasetBuildSpec& spec) {
+  const RunConfig config = run_config_from_json(spec.config, spec.scenario);
+  check_dataset_sources(config, spec.reference.steps);
   const DatasetFolder folder(spec.dir, spec.scenario);
   fs::create_directories(folder.dir);
   remove_leftovers(folder);
 
-  const long budget = run_config_from_json(spec.config, spec.scenario).steps;
+  const long budget = config.steps;
   const long steps = spec.reference.steps > 0 ? spec.reference.steps : budget;
-  if (steps < budget)
-    throw std::invalid_argument("the reference's " + std::to_string(steps) + " steps are below the cells' budget of " +
-                                std::to_string(budget));
   const std::vector<Source> srcs = sources(budget, steps);
   const JobSpec ref = reference_job(spec, folder, steps);
   const std::string ref_hash = job_config_hash(ref);
@@ -210,6 +246,8 @@ int build_datasets(const DatasetBuildSpec& spec) {
   std::map<std::string, Dataset> made = collect_sources(spec, folder, srcs, steps, build_hash);
   Metadata mixed_meta = made.at("final").metadata;
   mixed_meta[meta::kSourceCheckpoint] = "half final, half medium (whole episodes)";
+  mixed_meta[meta::kSourceUpdates] = "final " + made.at("final").metadata.at(meta::kSourceUpdates) + ", medium " +
+                                     made.at("medium").metadata.at(meta::kSourceUpdates);
   made.emplace("final+medium", mix_final_medium(made.at("final"), made.at("medium"), mixed_meta));
   for (const auto& name : dataset_names()) write_dataset(folder.dataset(name), made.at(name));
   const nlohmann::json quality = check_quality(spec.scenario, made);

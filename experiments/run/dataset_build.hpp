@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "experiments/run/config_keys.hpp"
 #include "experiments/run/job.hpp"
 
 namespace rapid {
@@ -52,7 +53,14 @@ struct DatasetBuildSpec {
   bool force = false;
 };
 
-// Runs whatever stage is missing or stale. Returns 0 on success, 1 when the reference agent or a
+// Throws std::invalid_argument (one line) when a dataset of `config`'s reference would come from
+// an actor that has not been updated yet: a source checkpoint (1/10 or 1/2 of the budget T =
+// config.steps) at or before which the reference, a DDPG agent on that config, had no gradient
+// step (trainer.hpp's first_update_step). Also when `reference_steps` (L; 0: T) is below T.
+void check_dataset_sources(const RunConfig& config, long reference_steps);
+
+// Runs whatever stage is missing or stale. Checks check_dataset_sources first, and that every
+// source checkpoint it rolls out says it had at least one update. Returns 0 on success, 1 when the reference agent or a
 // dataset failed (its record or the message says why).
 int build_datasets(const DatasetBuildSpec& spec);
 

@@ -34,19 +34,40 @@ void add_curves(const TrainLog& log, nlohmann::json& record) {
         {{"step", e.step}, {"return", e.ret}, {"length", e.length}, {"collision", e.collision}});
   record["bc_loss"] = nlohmann::json::array();
   record["losses"] = nlohmann::json::array();
+  record["gradients"] = nlohmann::json::array();
   for (const LossPoint& p : log.losses) {
     record["bc_loss"].push_back({{"step", p.step}, {"prior", json_number(p.bc_prior)}, {"online", json_number(p.bc_online)}});
     record["losses"].push_back({{"step", p.step}, {"critic", json_number(p.critic_loss)},
                                 {"actor", json_number(p.actor_loss)}, {"q_mean", json_number(p.q_mean)}});
+    record["gradients"].push_back({{"step", p.step},
+                                   {"q_prior", json_number(p.q_grad_prior)},
+                                   {"q_online", json_number(p.q_grad_online)},
+                                   {"bc_prior", json_number(p.bc_grad_prior)},
+                                   {"bc_online", json_number(p.bc_grad_online)}});
   }
+}
+
+// The final return: the final evaluation where there is one, else the last K evaluations' mean.
+nlohmann::json final_json(const TrainLog& log, int last_k) {
+  const auto [last_k_mean, last_k_std] = final_performance(log, last_k);
+  if (!log.final_eval)
+    return {{"return_mean", last_k_mean}, {"return_std", last_k_std}, {"last_k", last_k}};
+  const EvalResult& f = *log.final_eval;
+  return {{"return_mean", f.return_mean},
+          {"return_std", f.return_std},
+          {"episodes", f.returns.size()},
+          {"collision_rate", f.collision_rate},
+          {"episode_returns", f.returns},
+          {"last_k", last_k},
+          {"last_k_mean", last_k_mean}};
 }
 
 }  // namespace
 
 void finish_record(nlohmann::json& record, const TrainLog& log, int last_k, double wall_s) {
   add_curves(log, record);
-  const auto [final_mean, final_std] = final_performance(log, last_k);
-  record["final"] = {{"return_mean", final_mean}, {"return_std", final_std}, {"last_k", last_k}};
+  record["final"] = final_json(log, last_k);
+  record["updates"] = log.updates;
   record["timing"] = {{"wall_s", wall_s},
                       {"env_steps_per_s", log.env_seconds > 0 ? log.env_steps / log.env_seconds : 0.0},
                       {"updates_per_s", log.update_seconds > 0 ? log.updates / log.update_seconds : 0.0},

@@ -18,7 +18,9 @@ inline constexpr const char* kRunRecordSchema = "rapid.run/1";
 nlohmann::json start_record(const JobSpec& spec);
 
 // What the job measured, also when it failed midway: the curves (eval, train_episodes, bc_loss,
-// losses), the final performance over the last `last_k` evaluations, the timings and the end time.
+// losses, gradients), the final return (the final evaluation's mean where the log has one, else
+// the mean of the last `last_k` evaluations, which is also kept beside it), the timings and the
+// end time.
 void finish_record(nlohmann::json& record, const TrainLog& log, int last_k, double wall_s);
 
 }  // namespace rapid

@@ -60,13 +60,15 @@ int run_job(const JobSpec& spec) {
     auto agent = algo.make(env->obs_dim(), env->act_dim(), config.agent, stream_seed(spec.seed, Stream::kNetworkInit));
     TrainHooks hooks;
     hooks.checkpoint_steps = spec.checkpoint_steps;
-    hooks.checkpoint = [&](long step) { agent->actor().save(checkpoint_file(spec.out_dir, step)); };
+    hooks.checkpoint = [&](long step, long updates) {
+      agent->actor().save(checkpoint_file(spec.out_dir, step), updates);
+    };
     hooks.progress = [&](long step, const TrainLog& l) {
       const double s = seconds_since(t0);
       write_progress(spec.out_dir, step, config.steps, s > 0 ? l.env_steps / s : 0.0);
     };
     train(*env, *agent, algo.uses_prior ? &prior : nullptr, return_window, config, spec.seed, log, hooks);
-    agent->actor().save(spec.out_dir + "/" + job_files::kActor);
+    agent->actor().save(spec.out_dir + "/" + job_files::kActor, log.updates);
     record["status"] = "ok";
   } catch (const DivergedError& e) {
     record["status"] = "diverged";

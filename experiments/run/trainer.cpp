@@ -13,6 +13,7 @@ namespace {
 // Running means of UpdateStats over one logging window.
 struct LossWindow {
   double bc_prior = 0, bc_online = 0, critic = 0, actor = 0, q = 0;
+  double q_grad_prior = 0, q_grad_online = 0, bc_grad_prior = 0, bc_grad_online = 0;
   long n = 0;
   void add(const UpdateStats& s) {
     bc_prior += s.bc_prior;
@@ -20,11 +21,24 @@ struct LossWindow {
     critic += s.critic_loss;
     actor += s.actor_loss;
     q += s.q_mean;
+    q_grad_prior += s.q_grad_prior;
+    q_grad_online += s.q_grad_online;
+    bc_grad_prior += s.bc_grad_prior;
+    bc_grad_online += s.bc_grad_online;
     ++n;
   }
   LossPoint flush(long step) {
     const double k = static_cast<double>(n);
-    LossPoint p{step, bc_prior / k, bc_online / k, critic / k, actor / k, q / k};
+    LossPoint p{step,
+                bc_prior / k,
+                bc_online / k,
+                critic / k,
+                actor / k,
+                q / k,
+                q_grad_prior / k,
+                q_grad_online / k,
+                bc_grad_prior / k,
+                bc_grad_online / k};
     *this = {};
     return p;
   }
@@ -32,10 +46,30 @@ struct LossWindow {
 
 }  // namespace
 
+namespace {
+
+// Fills the mean, std and collision rate from the per-episode vectors.
+EvalResult& summarise(EvalResult& r) {
+  r.return_mean = mean(r.returns);
+  r.return_std = population_std(r.returns);
+  r.collision_rate = static_cast<double>(std::count(r.collided.begin(), r.collided.end(), true)) /
+                     static_cast<double>(r.collided.size());
+  return r;
+}
+
+// The evaluation of the first `n` of r's episodes.
+EvalResult head_of(const EvalResult& r, int n) {
+  EvalResult h;
+  h.returns.assign(r.returns.begin(), r.returns.begin() + n);
+  h.collided.assign(r.collided.begin(), r.collided.begin() + n);
+  return summarise(h);
+}
+
+}  // namespace
+
 EvalResult evaluate(Env& env, ActorCritic& agent, int episodes) {
   Vec obs(env.obs_dim());
-  std::vector<double> returns;
-  int collisions = 0;
+  EvalResult result;
   for (int e = 0; e < episodes; ++e) {
     env.reset(stream_seed(kEvaluationBaseSeed, Stream::kEnvEval, static_cast<std::uint64_t>(e)), obs);
     double ret = 0;
@@ -46,10 +80,16 @@ EvalResult evaluate(Env& env, ActorCritic& agent, int episodes) {
       collided = collided || r.info.collision;
       if (r.terminated || r.truncated) break;
     }
-    returns.push_back(ret);
-    collisions += collided ? 1 : 0;
+    result.returns.push_back(ret);
+    result.collided.push_back(collided);
   }
-  return {mean(returns), population_std(returns), static_cast<double>(collisions) / episodes};
+  return summarise(result);
+}
+
+long first_update_step(const RunConfig& config, bool with_prior) {
+  const long batch = config.agent.batch_size;
+  const long online_part = with_prior ? batch - batch / 2 : batch;
+  return std::max({config.warmup_steps, online_part, 1L});
 }
 
 std::pair<double, double> final_performance(const TrainLog& log, int last_k) {
@@ -78,6 +118,7 @@ class TrainingRun {
         online_(env.obs_dim(), env.act_dim(), static_cast<std::size_t>(std::min(config.buffer_capacity, config.steps)),
                 return_window),
         sampler_(prior, &online_),
+        first_update_(first_update_step(config, prior != nullptr)),
         explore_rng_(stream_seed(run_seed, Stream::kExploration)),
         sample_rng_(stream_seed(run_seed, Stream::kSampling)),
         obs_(env.obs_dim()),
@@ -96,7 +137,7 @@ class TrainingRun {
       choose_action(t);
       const StepResult r = step_env();
       const long done_steps = t + 1;
-      if (done_steps >= config_.warmup_steps) learn(done_steps);
+      if (done_steps >= first_update_) learn(done_steps);
       if (done_steps % config_.bc_log_every == 0 && window_.n > 0) log_losses(done_steps);
       checkpoint_if_due(done_steps);
       const bool last_step = done_steps == config_.steps;
@@ -106,7 +147,8 @@ class TrainingRun {
   }
 
  private:
-  // Uniform random during the warm-up, then π(s) plus Gaussian noise, clipped to [-1, 1].
+  // Uniform random during the warm-up (if the config has one), then π(s) plus Gaussian noise,
+  // clipped to [-1, 1].
   void choose_action(long t) {
     const int act_dim = static_cast<int>(action_.size());
     if (t < config_.warmup_steps) {
@@ -133,8 +175,8 @@ class TrainingRun {
     return r;
   }
 
-  // One gradient step on a fresh batch (one per decision after the warm-up). A NaN or inf loss
-  // ends the run as diverged.
+  // One gradient step on a fresh batch (one per decision from first_update_ on). A NaN or inf
+  // loss ends the run as diverged.
   void learn(long done_steps) {
     const auto t0 = Clock::now();
     sampler_.sample(sample_rng_, batch_);
@@ -156,7 +198,7 @@ class TrainingRun {
 
   void checkpoint_if_due(long done_steps) {
     if (next_checkpoint_ < hooks_.checkpoint_steps.size() && done_steps == hooks_.checkpoint_steps[next_checkpoint_]) {
-      if (hooks_.checkpoint) hooks_.checkpoint(done_steps);
+      if (hooks_.checkpoint) hooks_.checkpoint(done_steps, log_.updates);
       ++next_checkpoint_;
     }
   }
@@ -168,7 +210,7 @@ class TrainingRun {
     if (done_steps >= next_eval_ || last_step) {
       const long target = last_step ? config_.steps : next_eval_;
       while (next_eval_ <= done_steps) next_eval_ += config_.eval_every;
-      evaluate_now(done_steps, std::min(target, config_.steps));
+      evaluate_now(done_steps, std::min(target, config_.steps), last_step);
     }
     if (!last_step) start_episode(done_steps);
   }
@@ -178,10 +220,20 @@ class TrainingRun {
     episode_ = {at_step, 0.0, 0, false};
   }
 
-  // `target` is the multiple of eval_every this evaluation stands for (curves align on it).
-  void evaluate_now(long step, long target) {
+  // `target` is the multiple of eval_every this evaluation stands for (curves align on it). At
+  // the end of a run with a final evaluation, one evaluation serves both: the final one runs the
+  // same evaluation seeds 0, 1, … as every curve point, with more of them, so the curve's last
+  // point is its first eval_episodes episodes.
+  void evaluate_now(long step, long target, bool final = false) {
     const auto t0 = Clock::now();
-    const EvalResult r = evaluate(env_, agent_, config_.eval_episodes);
+    const bool with_final = final && config_.final_eval_episodes > 0;
+    EvalResult r = evaluate(env_, agent_, with_final ? std::max(config_.eval_episodes, config_.final_eval_episodes)
+                                                     : config_.eval_episodes);
+    if (with_final) {
+      log_.final_eval = r;
+      r = head_of(r, config_.eval_episodes);
+      log_.final_eval = head_of(*log_.final_eval, config_.final_eval_episodes);
+    }
     log_.eval.push_back({step, target, r.return_mean, r.return_std, r.collision_rate});
     log_.eval_seconds += seconds_since(t0);
   }
@@ -200,6 +252,7 @@ class TrainingRun {
   const TrainHooks& hooks_;
   ReplayBuffer online_;
   SymmetricSampler sampler_;
+  const long first_update_;
   Batch batch_;
   Rng explore_rng_, sample_rng_;
   Vec obs_, next_obs_, action_;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -26,13 +27,25 @@ struct TrainEpisode {
 };
 
 // Means over the updates of one logging window; NaN where not defined (bc_prior without prior).
+// The *_grad fields are the mean per-sample gradient norms at the actor's output of the actor
+// loss's two terms (UpdateStats), the prior and online columns apart.
 struct LossPoint {
   long step = 0;
   double bc_prior = 0, bc_online = 0, critic_loss = 0, actor_loss = 0, q_mean = 0;
+  double q_grad_prior = 0, q_grad_online = 0, bc_grad_prior = 0, bc_grad_online = 0;
+};
+
+struct EvalResult {
+  double return_mean = 0, return_std = 0, collision_rate = 0;
+  std::vector<double> returns;  // one per episode, in the order of the evaluation seeds
+  std::vector<bool> collided;   // whether that episode had a collision
 };
 
 struct TrainLog {
   std::vector<EvalPoint> eval;
+  // The final evaluation at T on final_eval_episodes episodes; empty when the config has none
+  // (then the final return is the mean of the last K evaluations, final_performance()).
+  std::optional<EvalResult> final_eval;
   std::vector<TrainEpisode> episodes;
   std::vector<LossPoint> losses;
   long env_steps = 0, updates = 0;
@@ -41,7 +54,7 @@ struct TrainLog {
 
 struct TrainHooks {
   std::vector<long> checkpoint_steps;             // call `checkpoint` after these steps
-  std::function<void(long step)> checkpoint;
+  std::function<void(long step, long updates)> checkpoint;  // updates: gradient steps so far
   std::function<void(long step, const TrainLog&)> progress;  // called now and then (≥ 1 s apart)
 };
 
@@ -51,12 +64,14 @@ class DivergedError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-struct EvalResult {
-  double return_mean = 0, return_std = 0, collision_rate = 0;
-};
-
 // Runs `episodes` episodes of the deterministic policy on the fixed evaluation seeds.
 EvalResult evaluate(Env& env, ActorCritic& agent, int episodes);
+
+// The first decision after which the agent updates (Algorithm 1's start): once `warmup_steps`
+// decisions have passed (0: none; before them, actions are uniform random) and the online buffer
+// holds the online part of a batch (B − B/2 with a prior dataset, B without). One update per
+// decision from then on, so after decision t ≥ this step the agent has had t − step + 1 updates.
+long first_update_step(const RunConfig& config, bool with_prior);
 
 // Trains `agent` online for config.steps decisions. With a `prior` buffer (for the algorithms
 // whose registry row says uses_prior), every batch is half prior, half online; null: all online.
@@ -67,7 +82,8 @@ EvalResult evaluate(Env& env, ActorCritic& agent, int episodes);
 void train(Env& env, ActorCritic& agent, const ReplayBuffer* prior, int return_window, const RunConfig& config,
            std::uint64_t run_seed, TrainLog& log, const TrainHooks& hooks = {});
 
-// Final performance: the mean and std of the last K evaluations' mean returns.
+// The mean and std of the last K evaluations' mean returns (the final return when the config
+// has no final evaluation).
 std::pair<double, double> final_performance(const TrainLog& log, int last_k);
 
 }  // namespace rapid

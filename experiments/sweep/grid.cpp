@@ -205,6 +205,22 @@ void parse_reference_steps(const GridChecker& check, const json& ref, Grid& grid
   }
 }
 
+// Every dataset the grid builds must come from a reference actor that has had updates
+// (check_dataset_sources), at each point of an axis the reference reads.
+void check_references_learn(const GridChecker& check, const Grid& grid) {
+  if (!grid_uses_prior(grid)) return;
+  for (const std::string& scenario : grid.scenarios) {
+    for (const AxisPoint& point : axis_points(grid, scenario, reference_reads)) {
+      try {
+        check_dataset_sources(run_config_from_json(cell_config(grid, scenario, point), scenario),
+                              reference_for(grid, scenario).steps);
+      } catch (const std::invalid_argument& e) {
+        check.fail("reference", scenario + (point.empty() ? "" : " at " + point_label(point)) + ": " + e.what());
+      }
+    }
+  }
+}
+
 // apply_overrides prefixes its messages with the origin we gave it; the checker adds the field.
 std::string without_prefix(const std::string& text, const std::string& prefix) {
   return text.rfind(prefix, 0) == 0 ? text.substr(prefix.size()) : text;
@@ -382,6 +398,7 @@ Grid parse_grid(const json& doc, const std::string& label) {
   check_axis_values(check, grid);
   check_algorithms_fit(check, grid);
   parse_reference_steps(check, check.object_or_empty(doc, "reference"), grid);
+  check_references_learn(check, grid);
 
   grid.normalized = doc;
   grid.normalized["config"] = grid.config;

@@ -15,7 +15,7 @@ nlohmann::json make_grid(const std::string& name, const std::vector<std::string>
                          const std::vector<int>& seeds) {
   return {{"name", name},       {"scenarios", scenarios},
           {"datasets", datasets}, {"algos", algos},
-          {"seeds", seeds},     {"config", {{"steps", 1000}, {"eval_every", 500}, {"warmup_steps", 100}}},
+          {"seeds", seeds},     {"config", {{"steps", 1000}, {"eval_every", 500}, {"warmup_steps", 0}, {"batch_size", 64}}},
           {"reference", {{"seed", 1000}, {"transitions", 1000}}}};
 }
 

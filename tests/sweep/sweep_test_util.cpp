@@ -32,8 +32,8 @@ nlohmann::json pendulum_grid(const std::string& name, const std::vector<std::str
           {"datasets", {"initial"}},
           {"algos", algos},
           {"seeds", seeds},
-          {"config", {{"steps", steps}, {"eval_every", steps / 2}, {"eval_episodes", 2}, {"warmup_steps", 200},
-                      {"batch_size", 64}}},
+          {"config", {{"steps", steps}, {"eval_every", steps / 2}, {"eval_episodes", 2}, {"warmup_steps", 0},
+                      {"batch_size", 32}}},
           {"reference", {{"seed", 1000}, {"transitions", 1000}}}};
 }
 

@@ -21,7 +21,7 @@ json valid_grid() {
           {"datasets", {"initial", "final+medium"}},
           {"algos", {"rapid-rl", "ddpg"}},
           {"seeds", {0, 1}},
-          {"config", {{"steps", 1000}}}};
+          {"config", {{"steps", 1000}, {"warmup_steps", 0}, {"batch_size", 64}}}};
 }
 
 std::string error_of(const json& doc) {
@@ -43,7 +43,7 @@ TEST(Grid, ValidGridGetsDefaults) {
   EXPECT_FALSE(g.jobs.has_value());
   EXPECT_EQ(g.normalized["reference"]["noise_std"], 0.1);
   EXPECT_EQ(g.normalized["max_retries"], 2);
-  EXPECT_EQ(grid_overrides(g, "pendulum"), (json{{"steps", 1000}}));
+  EXPECT_EQ(grid_overrides(g, "pendulum"), (json{{"steps", 1000}, {"warmup_steps", 0}, {"batch_size", 64}}));
 }
 
 TEST(Grid, AnAlgorithmFindsTheKeysItNeedsInConfigOrScenarioConfig) {
@@ -67,7 +67,7 @@ TEST(Grid, ScenarioConfigOverridesConfig) {
   json doc = valid_grid();
   doc["scenario_config"] = {{"pendulum", {{"steps", 500}, {"batch_size", 32}}}};
   const Grid g = parse_grid(doc, "g.json");
-  EXPECT_EQ(grid_overrides(g, "pendulum"), (json{{"steps", 500}, {"batch_size", 32}}));
+  EXPECT_EQ(grid_overrides(g, "pendulum"), (json{{"steps", 500}, {"batch_size", 32}, {"warmup_steps", 0}}));
 }
 
 TEST(Grid, EachMalformedGridNamesItsField) {
@@ -139,7 +139,7 @@ TEST(Grid, DifferencesNameTheChangedLeaves) {
   after["seeds"] = {0, 1, 2};
   after["config"]["batch_size"] = 32;
   const auto diff = grid_differences(before, after);
-  EXPECT_EQ(diff, (std::vector<std::string>{"config.batch_size: added 32", "config.steps: 1000 → 2000",
+  EXPECT_EQ(diff, (std::vector<std::string>{"config.batch_size: 64 → 32", "config.steps: 1000 → 2000",
                                             "seeds: [0,1] → [0,1,2]"}));
   EXPECT_TRUE(grid_differences(before, before).empty());
 }

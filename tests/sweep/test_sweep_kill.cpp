@@ -21,7 +21,12 @@ constexpr long kSteps = 20000;
 
 class KillSweep : public ::testing::Test {
  protected:
-  void SetUp() override { write_json(grid_path_, pendulum_grid("kill", {"ddpg"}, {0, 1}, kSteps)); }
+  // Batches of 64: runs slow enough to be caught mid-run (DDPG only, so no dataset constrains it).
+  void SetUp() override {
+    json grid = pendulum_grid("kill", {"ddpg"}, {0, 1}, kSteps);
+    grid["config"]["batch_size"] = 64;
+    write_json(grid_path_, grid);
+  }
 
   std::string sweep_args(const fs::path& out, int jobs) const {
     return "sweep " + grid_path_.string() + " --jobs " + std::to_string(jobs) + " --out " + out.string();

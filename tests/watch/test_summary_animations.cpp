@@ -55,7 +55,7 @@ class SummaryAnimations : public ::testing::Test {
     Mlp actor = Mlp::make(18, {32, 32}, 2, false, true);
     Rng rng(3);
     actor.init(rng);
-    actor.save((run_dir(dataset, algo) / "actor.ckpt").string());
+    actor.save((run_dir(dataset, algo) / "actor.ckpt").string(), 1);
     const auto path = run_dir(dataset, algo) / "record.json";
     nlohmann::json record = report_test::read_json(path);
     record["config"] = report_test::read_json(std::string(RAPID_SOURCE_DIR) + "/experiments/configs/short/merge.json");
