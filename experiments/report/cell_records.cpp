@@ -14,7 +14,10 @@ LoadedRecord load_cell_record(const SweepFolder& folder, const SweepJob& cell) {
     out.result.error = r.error;
     return out;
   }
-  out.result.final_return = (*r.record)["final"]["return_mean"].get<double>();
+  const nlohmann::json& final = (*r.record)["final"];
+  out.result.final_return = final["return_mean"].get<double>();
+  if (final.contains("episodes") && final["episodes"].is_number_integer())
+    out.result.final_episodes = final["episodes"].get<int>();
   out.record = std::move(r.record);
   return out;
 }

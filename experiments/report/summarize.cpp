@@ -86,6 +86,10 @@ CellSummary summarize_cell(const SweepFolder& folder, const std::vector<const Sw
   cell.bc_online = mean_curve(pointers, "bc_loss", "step", "online");
   cell.q_value = mean_curve(pointers, "losses", "step", "q_mean");
   cell.collision_rate = mean_eval_curve(pointers, "collision_rate");
+  cell.q_grad_prior = mean_curve(pointers, "gradients", "step", "q_prior");
+  cell.q_grad_online = mean_curve(pointers, "gradients", "step", "q_online");
+  cell.bc_grad_prior = mean_curve(pointers, "gradients", "step", "bc_prior");
+  cell.bc_grad_online = mean_curve(pointers, "gradients", "step", "bc_online");
   add_statistics(cell, settings);
   return cell;
 }

@@ -30,6 +30,7 @@ struct SeedResult {
   std::uint64_t seed = 0;
   std::string status;
   std::optional<double> final_return;  // final.return_mean of an ok record
+  int final_episodes = 0;              // its final evaluation's episodes; 0: the last K evaluations' mean
   std::string error;                   // one line for anything but ok
   // Every evaluation of an ok record: (step, return_mean), the x of Figure 2; for runs.csv.
   std::vector<std::pair<double, double>> eval;
@@ -56,6 +57,9 @@ struct CellSummary {
   MeanCurve bc_prior, bc_online;        // rapid-rl and other prior algorithms; prior empty without one
   MeanCurve q_value;                    // the critic's mean Q over the batch (losses.q_mean)
   MeanCurve collision_rate;             // share of evaluation episodes ended by a collision (driving)
+  // The two forces on the actor at its output (records' "gradients"): the Q term's λ‖∂Q/∂a‖ and
+  // the imitation term's ‖2·w·(π(s) − a)‖, on the batch's prior and online halves.
+  MeanCurve q_grad_prior, q_grad_online, bc_grad_prior, bc_grad_online;
   std::optional<double> eval_auc;       // area under the mean eval curve / step range
   std::string key() const;              // "merge/initial/rapid-rl", "merge/none/ddpg", "merge/initial/rapid-rl/epsilon=0.3"
 };

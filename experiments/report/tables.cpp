@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <sstream>
 
 #include "algos/registry.hpp"
@@ -137,25 +138,49 @@ std::string last_text(const MeanCurve& curve, int decimals) {
 }
 
 // What each cell's agents ended with: the collision rate of the last evaluation, the critic's
-// mean Q and the imitation errors at the last logged update. They explain a return (CoL-all's
+// mean Q and the imitation errors at the last logged update, and (records that log them) the
+// gradients of the actor loss's two terms at the actor's output. They explain a return (CoL-all's
 // imitation term is tiny beside Q; a low return with no collisions is a crawling agent).
 std::string end_of_training_markdown(const Summary& s) {
   std::ostringstream out;
   const bool axes = !s.grid.axes.empty();
+  const bool gradients =
+      std::any_of(s.cells.begin(), s.cells.end(), [](const CellSummary& c) { return !c.q_grad_online.empty(); });
   out << "\n## End of training\n\nMeans over the ok seeds at the last logged point: the share of the last "
          "evaluation's episodes ended by a collision, the critic's mean Q over a batch, and the imitation error "
-         "‖π(s) − a‖² on the batch's prior and online halves (logged for every algorithm, imitating or not).\n\n"
-      << "| Scenario | Dataset | Algorithm |" << (axes ? " Axes |" : "")
-      << " collisions | Q | BC error prior | BC error online |\n|---|---|---|" << (axes ? "---|" : "")
-      << "---:|---:|---:|---:|\n";
+         "‖π(s) − a‖² on the batch's prior and online halves (logged for every algorithm, imitating or not).";
+  if (gradients)
+    out << " What moves the actor are the gradients at its output, per sample: the Q term's λ‖∂Q/∂a‖ and the "
+           "imitation term's ‖2·w·(π(s) − a)‖ (w the algorithm's imitation weight: 0 where it does not imitate), "
+           "on each half.";
+  out << "\n\n| Scenario | Dataset | Algorithm |" << (axes ? " Axes |" : "")
+      << " collisions | Q | BC error prior | BC error online |"
+      << (gradients ? " Q grad prior | Q grad online | BC grad prior | BC grad online |" : "") << "\n|---|---|---|"
+      << (axes ? "---|" : "") << "---:|---:|---:|---:|" << (gradients ? "---:|---:|---:|---:|" : "") << "\n";
   for (const CellSummary& c : s.cells) {
     if (c.n_ok == 0) continue;
     out << "| " << scenario_display_name(c.scenario) << " | " << (c.dataset.empty() ? "—" : dataset_display_name(c.dataset))
         << " | " << algo_display_name(c.algo) << " |" << (axes ? " " + point_text(c.axis) + " |" : "") << " "
         << last_text(c.collision_rate, 2) << " | " << last_text(c.q_value, 1) << " | " << last_text(c.bc_prior, 3)
-        << " | " << last_text(c.bc_online, 3) << " |\n";
+        << " | " << last_text(c.bc_online, 3) << " |";
+    if (gradients)
+      out << " " << last_text(c.q_grad_prior, 3) << " | " << last_text(c.q_grad_online, 3) << " | "
+          << last_text(c.bc_grad_prior, 3) << " | " << last_text(c.bc_grad_online, 3) << " |";
+    out << "\n";
   }
   return out.str();
+}
+
+// What a run's final return is: its final evaluation (flow profile) or its last evaluations' mean.
+std::string final_return_text(const Summary& s) {
+  std::set<int> episodes;
+  for (const CellSummary& c : s.cells)
+    for (const SeedResult& r : c.seeds)
+      if (r.final_return) episodes.insert(r.final_episodes);
+  if (episodes.empty() || episodes.count(0)) return "mean of the last evaluations of each run";
+  std::string n;
+  for (int e : episodes) n += (n.empty() ? "" : " or ") + std::to_string(e);
+  return "the mean over the " + n + " episodes of each run's final evaluation at the end of training";
 }
 
 }  // namespace
@@ -164,7 +189,7 @@ std::string table_markdown(const Summary& s) {
   const int decimals = decimals_for(s);
   std::ostringstream out;
   out << "# Table I — grid `" << s.grid.name << "`\n\n"
-      << "Final return (mean of the last evaluations of each run), mean ± std over seeds; **bold** is the best mean of "
+      << "Final return (" << final_return_text(s) << "), mean ± std over seeds; **bold** is the best mean of "
          "the row. `(n=k/N)`: only k of the N seeds finished ok (failed, diverged, missing or stale runs are not "
          "averaged in); `—`: no seed finished ok. DDPG uses no dataset: its value repeats in each row of its "
          "scenario.\n\n"
