@@ -39,6 +39,7 @@ struct SweepOptions {
   bool no_animations = false;
   std::string job_timeout;  // local: e.g. 90s, 45m, 2h; empty: no limit
   std::string reuse_datasets;  // another sweep folder whose references and datasets to start from
+  bool check_references = false;  // train the references instead, and check them against that folder's
   // --backend slurm (sweep/slurm_backend.hpp)
   SlurmOptions slurm;
   bool dry_run = false;
@@ -132,9 +133,22 @@ void reuse_datasets_from(const std::optional<SweepFolder>& source, const SweepFo
   if (!source) return;
   const ReuseReport r = reuse_datasets(folder, *source);
   std::cerr << "rapid sweep: reused the references and datasets of " << r.copied.size() << " of "
-            << r.copied.size() + r.present.size() + r.stale.size() << " scenario builds from " << source->dir.string()
+            << r.copied.size() + r.references_only.size() + r.present.size() + r.stale.size() << " scenario builds from "
+            << source->dir.string()
+            << (r.references_only.empty() ? "" : "; the references alone of " + std::to_string(r.references_only.size()) +
+                                                     " (their datasets are collected here)")
             << (r.present.empty() ? "" : "; " + std::to_string(r.present.size()) + " already here")
             << (r.stale.empty() ? "" : "; " + std::to_string(r.stale.size()) + " not done there for this grid's reference settings, built here") << "\n";
+}
+
+// --check-references: the references this sweep trained against FROM's, checkpoint by checkpoint.
+bool check_references_against(const SweepFolder& folder, const SweepFolder& source) {
+  int identical = 0;
+  const std::vector<std::string> differences = compare_references(folder, source, &identical);
+  std::cout << "references: " << identical << " trained here identical to " << source.dir.string() << ", "
+            << differences.size() << " not\n";
+  for (const std::string& d : differences) std::cout << "  " << d << "\n";
+  return differences.empty();
 }
 
 // --backend slurm: prepare the folder like the local backend, then submit the job arrays
@@ -217,6 +231,8 @@ int sweep_command(const SweepOptions& o) {
     throw UsageError("--backend: '" + o.backend + "' is not available; expected local or slurm");
   if (o.out_given && o.out.empty()) throw UsageError("--out: must name a folder, got an empty path");
   const fs::path dir = o.out_given ? fs::path(o.out) : fs::path("results") / grid.name;
+  if (o.check_references && o.reuse_datasets.empty())
+    throw UsageError("--check-references: needs --reuse-datasets FROM, the folder whose references to check against");
   const std::optional<SweepFolder> source = reuse_source(o, dir);
   SweepFolder folder = make_sweep_folder(dir, grid);
   LocalSweepOptions options;
@@ -226,6 +242,8 @@ int sweep_command(const SweepOptions& o) {
     throw UsageError(e.what());
   }
   if (o.backend == "slurm") {
+    if (o.check_references)
+      throw UsageError("--check-references: for the local backend, which waits for the references it compares");
     if (!o.job_timeout.empty()) throw UsageError("--job-timeout is for the local backend; with --backend slurm use --time");
     return submit_to_slurm(o, folder, options.selection, source);
   }
@@ -242,7 +260,7 @@ int sweep_command(const SweepOptions& o) {
   make_output_folder(dir, out_option(o, dir));
   const auto lock = lock_folder(dir);
   update_grid_file(folder, std::cerr);
-  reuse_datasets_from(source, folder);
+  if (!o.check_references) reuse_datasets_from(source, folder);
 
   std::cerr << "rapid sweep: " << grid.name << " → " << dir.string() << " (" << options.workers << " worker"
             << (options.workers == 1 ? "" : "s") << (o.only.empty() ? "" : ", only " + o.only)
@@ -262,11 +280,12 @@ int sweep_command(const SweepOptions& o) {
     if (j.state == "failed" || j.state == "diverged" || j.state == "blocked")
       std::cout << "  " << j.state << " " << j.id << ": " << j.error << "\n";
   if (report.interrupted_by) return kExitInterrupted;
+  const bool references_agree = !o.check_references || check_references_against(folder, *source);
   // Refresh the reports from whatever records exist (a partial sweep or an --only rerun too). A
   // signal meanwhile is an interrupted sweep (130); reports that fail make it a failed one.
   const int reports = o.no_summary ? kExitOk : summarize_sweep(dir.string(), "", /*plots=*/true, !o.no_animations);
   if (reports == kExitInterrupted) return kExitInterrupted;
-  return report.all_ok() && reports == kExitOk ? kExitOk : kExitFailed;
+  return report.all_ok() && references_agree && reports == kExitOk ? kExitOk : kExitFailed;
 }
 
 }  // namespace
@@ -282,6 +301,9 @@ Command add_sweep_command(CLI::App& parent) {
   sub->add_option("--reuse-datasets", o->reuse_datasets,
                   "start from another sweep folder's reference agents and datasets where it built them for this grid's "
                   "reference settings (copied; that folder is only read)");
+  sub->add_flag("--check-references", o->check_references,
+                "with --reuse-datasets FROM: train the reference agents here instead of copying them, then check that "
+                "their checkpoints are byte-identical to FROM's (exit 1 naming any that differ)");
   sub->add_flag("--no-summary", o->no_summary, "do not refresh the reports (rapid summarize) at the end");
   sub->add_flag("--no-animations", o->no_animations, "refresh the reports without the animations");
   sub->add_option("--backend", o->backend, "where jobs run: local (this machine) or slurm (submit job arrays)");

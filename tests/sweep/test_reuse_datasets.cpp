@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/dataset_io.hpp"
 #include "experiments/sweep/reuse_datasets.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
 #include "tests/sweep/sweep_test_util.hpp"
@@ -59,6 +60,61 @@ TEST_F(ReuseDatasets, DatasetsBuiltForOtherReferenceSettingsAreNotTaken) {
   EXPECT_TRUE(r.copied.empty());
   EXPECT_EQ(r.stale, (std::vector<std::string>{"pendulum/datasets"}));
   EXPECT_FALSE(fs::exists(sweep / "datasets"));
+}
+
+// A folder with the reference agents alone (results/references/: their records and checkpoints,
+// not the datasets, which are too large to commit): the references are taken, the datasets
+// collected here from them, identical to FROM's own; --check-references trains them instead and
+// checks them against FROM's byte for byte.
+TEST_F(ReuseDatasets, AFolderOfReferencesAloneGivesItsAgentsAndTheDatasetsAreCollectedHere) {
+  const fs::path built = dir.path() / "built";  // a real sweep: a trained reference and its datasets
+  ASSERT_EQ(run_rapid("sweep " + grid_path.string() + " --jobs 2 --no-summary --out " + built.string()).exit_code, 0);
+  const Dataset original = read_dataset((built / "datasets/pendulum/initial.h5").string());
+  const fs::path refs = dir.path() / "refs";
+  fs::create_directories(refs / "datasets/pendulum");
+  fs::copy(built / "grid.json", refs / "grid.json");
+  fs::copy(built / "datasets/pendulum/reference", refs / "datasets/pendulum/reference", fs::copy_options::recursive);
+  fs::create_directories(refs / "jobs/pendulum");
+  fs::copy(built / "jobs/pendulum/reference", refs / "jobs/pendulum/reference", fs::copy_options::recursive);
+
+  const Result r = run_rapid("sweep " + grid_path.string() + " --jobs 1 --no-summary --out " + sweep.string() +
+                             " --reuse-datasets " + refs.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("reused the references and datasets of 0 of 1 scenario builds from " + refs.string() +
+                          "; the references alone of 1 (their datasets are collected here)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(jobs_ran(sweep), (std::vector<std::string>{"pendulum/datasets", "pendulum/initial/rapid-rl/seed0",
+                                                       "pendulum/none/ddpg/seed0"}));
+  const Dataset collected = read_dataset((sweep / "datasets/pendulum/initial.h5").string());
+  EXPECT_TRUE(collected.observations == original.observations && collected.actions == original.actions &&
+              collected.rewards == original.rewards);
+  EXPECT_EQ(collected.metadata.at("source_updates"), original.metadata.at("source_updates"));
+  EXPECT_FALSE(fs::exists(refs / "datasets/pendulum/initial.h5")) << "FROM was written to";
+
+  const fs::path checked = dir.path() / "checked";
+  const std::string check = "sweep " + grid_path.string() + " --jobs 1 --no-summary --reuse-datasets " +
+                            refs.string() + " --check-references --out ";
+  const Result same = run_rapid(check + checked.string());
+  ASSERT_EQ(same.exit_code, 0) << same.output;
+  EXPECT_NE(same.output.find("references: 1 trained here identical to " + refs.string() + ", 0 not"), std::string::npos)
+      << same.output;
+  EXPECT_EQ(jobs_ran(checked).front(), "pendulum/reference") << "the reference was trained, not copied";
+
+  // A checkpoint that is not what this build trains is named, and the sweep fails.
+  const fs::path ckpt = refs / "datasets/pendulum/reference/actor_60.ckpt";
+  ASSERT_TRUE(fs::exists(ckpt));
+  std::string bytes = bytes_of(ckpt);
+  bytes[bytes.size() / 2] ^= 1;
+  std::ofstream(ckpt, std::ios::binary | std::ios::trunc) << bytes;
+  const Result differs = run_rapid(check + (dir.path() / "checked2").string());
+  EXPECT_EQ(differs.exit_code, 1) << differs.output;
+  EXPECT_NE(differs.output.find("pendulum/reference: actor_60.ckpt differs from " + ckpt.string()), std::string::npos)
+      << differs.output;
+
+  const Result alone = run_rapid("sweep " + grid_path.string() + " --check-references --out " + (dir.path() / "x").string());
+  EXPECT_EQ(alone.exit_code, 2);
+  EXPECT_NE(alone.output.find("--check-references: needs --reuse-datasets FROM"), std::string::npos) << alone.output;
 }
 
 TEST_F(ReuseDatasets, AFolderThatIsNotASweepIsRefusedInOneLine) {
