@@ -1,5 +1,7 @@
 #include "experiments/bench/env_speed.hpp"
 
+#include "experiments/run/run_config.hpp"
+
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -58,8 +60,8 @@ std::vector<double> time_raw_sumo(DrivingEnv& env, std::uint64_t seed, long deci
 
 }  // namespace
 
-EnvBenchResult bench_env(const std::string& scenario, const EnvBenchOptions& o) {
-  std::unique_ptr<Env> env = make_env(scenario);
+EnvBenchResult bench_env(const std::string& scenario, const RunConfig& config, const EnvBenchOptions& o) {
+  std::unique_ptr<Env> env = make_run_env(scenario, config);
   auto* driving = dynamic_cast<DrivingEnv*>(env.get());
   EnvBenchResult res;
   res.scenario = scenario;

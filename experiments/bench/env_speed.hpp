@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <string>
 
+#include "experiments/run/config_keys.hpp"
+
 namespace rapid::bench {
 
 struct EnvBenchOptions {
@@ -33,6 +35,7 @@ struct EnvBenchResult {
 // Each round: one episode of random decisions (timed step by step) and, from a reset with the same
 // seed, the same number of SUMO steps with SUMO driving the ego and the env doing nothing else;
 // the two alternate which goes first.
-EnvBenchResult bench_env(const std::string& scenario, const EnvBenchOptions& options);
+// `config`: the scenario as a profile configures it (network, decision rate, traffic).
+EnvBenchResult bench_env(const std::string& scenario, const RunConfig& config, const EnvBenchOptions& options);
 
 }  // namespace rapid::bench

@@ -88,6 +88,7 @@ nlohmann::json to_json(const BenchReport& r) {
     };
   }
   j["update_scenario"] = r.update_scenario;
+  j["profile"] = r.profile;
   j["algorithms"] = nlohmann::json::object();
   for (const UpdateBenchResult& a : r.algorithms)
     j["algorithms"][a.algo] = {{"updates_per_s", a.updates_per_s}, {"update_gflops", a.update_gflops},
@@ -117,7 +118,7 @@ void print_report(std::ostream& out, const BenchReport& r) {
       out << fmt("  %-10s %14s %16.0f %11s %10s %9.2f\n", s.env.scenario.c_str(), "-", s.env.env_decisions_per_s, "-",
                  "-", s.env.reset_s * 1e3);
   }
-  out << "\ngradient updates at the " << r.update_scenario << " defaults ("
+  out << "\ngradient updates at the " << r.profile << " profile's " << r.update_scenario << " defaults ("
       << (r.algorithms.empty() ? "" : r.algorithms.front().shape) << ") vs Eigen GEMM on the same shapes\n";
   out << fmt("  %-10s %11s %13s %12s %8s  %s\n", "algorithm", "updates/s", "update GFLOP/s", "GEMM GFLOP/s", "ratio",
              "(target >= 0.5)");

@@ -28,6 +28,7 @@ struct ScenarioBench {
 
 struct BenchReport {
   bool quick = false;
+  std::string profile;  // the config profile whose scenarios, networks and batch were measured
   nlohmann::json machine;
   std::vector<ScenarioBench> scenarios;
   std::string update_scenario;  // whose default sizes the per-algorithm rows use

@@ -1,5 +1,7 @@
 #include "experiments/bench/train_speed.hpp"
 
+#include "experiments/run/run_config.hpp"
+
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -104,7 +106,7 @@ TrainBenchResult bench_train(const std::string& scenario, const RunConfig& defau
   // train() evaluates at the start and at the end; one short evaluation each, part of the run.
   config.eval_every = std::numeric_limits<long>::max() / 2;
   config.eval_episodes = 1;
-  std::unique_ptr<Env> env = make_env(scenario);
+  std::unique_ptr<Env> env = make_run_env(scenario, defaults);
   const int obs_dim = env->obs_dim(), act_dim = env->act_dim();
   const UpdateBenchOptions update_options{.budget_s = o.update_budget_s, .block = 10, .min_rounds = 2};
 

@@ -2,6 +2,7 @@
 // ratios (env vs raw SUMO, update vs GEMM, end-to-end vs predicted, N sweep workers vs one).
 // A benchmark, never a test: the numbers are printed and written, nothing is asserted.
 #include <iostream>
+#include <map>
 #include <memory>
 
 #include "algos/registry.hpp"
@@ -23,6 +24,7 @@ struct BenchOptions {
   std::string scenario;  // empty: the three driving scenarios
   std::string json_file;
   std::string train_algo = "rapid-rl";
+  std::string profile = kDefaultProfile;
   bool quick = false;
   bool no_sweep = false;
 };
@@ -55,27 +57,36 @@ int run_bench(const BenchOptions& o) {
     check_option("--scenario", [&] { make_env(o.scenario); });
     scenarios = {o.scenario};
   }
+  // The scenarios as the profile configures them (networks, decision rate, traffic, batch, sizes).
+  std::map<std::string, RunConfig> configs;
+  check_option("--profile", [&] {
+    for (const std::string& s : scenarios) {
+      check_profile(o.profile, s);
+      configs.emplace(s, run_config_from_json(default_config_json(s, o.profile), s));
+    }
+  });
   check_option("--train-algo", [&] {
     // It trains on the scenarios' config files as they are, which must give it every key it needs.
-    for (const std::string& s : scenarios) check_config_fits(o.train_algo, run_config_from_json(default_config_json(s), s));
+    for (const std::string& s : scenarios) check_config_fits(o.train_algo, configs.at(s));
   });
   const BenchPlan plan = make_plan(o.quick);
   const auto t_start = Clock::now();
   bench::BenchReport report;
   report.quick = o.quick;
+  report.profile = o.profile;
   report.machine = bench::machine_json();
 
   for (const std::string& s : scenarios) {
     std::cerr << "bench: " << s << ": environment vs raw SUMO\n";
     bench::ScenarioBench sb;
-    sb.env = bench::bench_env(s, plan.env);
+    sb.env = bench::bench_env(s, configs.at(s), plan.env);
     report.scenarios.push_back(sb);
   }
 
   report.update_scenario = scenarios.front();
   {
-    const RunConfig config = run_config_from_json(default_config_json(report.update_scenario), report.update_scenario);
-    const auto env = make_env(report.update_scenario);
+    const RunConfig& config = configs.at(report.update_scenario);
+    const auto env = make_run_env(report.update_scenario, config);
     for (const std::string& algo : algo_names()) {
       std::cerr << "bench: " << algo << ": updates vs GEMM\n";
       report.algorithms.push_back(bench::bench_update(algo, env->obs_dim(), env->act_dim(), config.agent, plan.update));
@@ -88,7 +99,7 @@ int run_bench(const BenchOptions& o) {
     sb.train_algo = o.train_algo;
     bench::TrainBenchOptions train = plan.train;
     train.algo = o.train_algo;
-    sb.train = bench::bench_train(s, run_config_from_json(default_config_json(s), s), train);
+    sb.train = bench::bench_train(s, configs.at(s), train);
   }
 
   if (o.quick || o.no_sweep) {
@@ -114,6 +125,8 @@ Command add_bench_command(CLI::App& parent) {
   sub->add_option("--json", opts->json_file, "also write the results as one JSON object to FILE");
   sub->add_option("--train-algo", opts->train_algo, "algorithm of the end-to-end training run: " + names_or(algo_names()))
       ->capture_default_str();
+  sub->add_option("--profile", opts->profile,
+                  "config profile whose scenarios, network sizes and batch are measured: short (default) or flow");
   sub->add_flag("--quick", opts->quick, "a few seconds: rough numbers (smoke test)");
   sub->add_flag("--no-sweep", opts->no_sweep, "skip the sweep throughput measurement");
   return {sub, [opts] { return run_bench(*opts); }};

@@ -64,7 +64,22 @@ TEST(RapidBench, OneScenarioAndPendulumWork) {
   EXPECT_TRUE(j["scenarios"]["pendulum"]["env_decisions_per_s"].is_number());
 }
 
+// The flow profile's scenarios (0.1 s decisions, one SUMO step each) and network sizes.
+TEST(RapidBench, TheFlowProfileIsMeasuredAtItsOwnSettings) {
+  const fs::path out = temp_file("flow.json");
+  ASSERT_EQ(run("bench --quick --no-sweep --profile flow --scenario merge --json '" + out.string() + "'"), 0);
+  std::ifstream in(out);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  fs::remove(out);
+  EXPECT_EQ(j["profile"], "flow");
+  EXPECT_EQ(j["scenarios"]["merge"]["action_repeat"], 1);  // the short profile's is 5
+  // The short profile's merge networks are 128 wide with batches of 128.
+  EXPECT_EQ(j["algorithms"]["ddpg"]["shape"], "actor 18-64-64-2, critic 20-64-64-1, batch 64");
+}
+
 TEST(RapidBench, BadInputExitsTwo) {
+  EXPECT_EQ(run("bench --quick --profile nope"), 2);
+  EXPECT_EQ(run("bench --quick --profile flow --scenario pendulum"), 2);
   EXPECT_EQ(run("bench --quick --scenario nowhere"), 2);
   EXPECT_EQ(run("bench --quick --train-algo nothing"), 2);
   // It trains on the config files as they are, which have no return_horizon.
