@@ -29,6 +29,8 @@ std::string shortened(std::string text, std::size_t max = 160) {
 
 nlohmann::json parse_json_text(const std::string& text) {
   std::vector<std::set<std::string>> keys;  // one set per open object
+  // Where the parser is: the key of each open object ("" before its first key), "[]" for an array.
+  std::vector<std::string> path;
   const auto check = [&](int depth, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
     using E = nlohmann::json::parse_event_t;
     if ((event == E::object_start || event == E::array_start) && depth >= kMaxJsonDepth)
@@ -37,6 +39,9 @@ nlohmann::json parse_json_text(const std::string& text) {
     if (event == E::object_end && !keys.empty()) keys.pop_back();
     if (event == E::key && !keys.empty() && !keys.back().insert(parsed.get<std::string>()).second)
       throw Refused{"duplicate key '" + shortened(parsed.get<std::string>(), 60) + "'"};
+    if (event == E::object_start || event == E::array_start) path.push_back(event == E::array_start ? "[]" : "");
+    if ((event == E::object_end || event == E::array_end) && !path.empty()) path.pop_back();
+    if (event == E::key && !path.empty()) path.back() = parsed.get<std::string>();
     return true;
   };
   try {
@@ -45,6 +50,12 @@ nlohmann::json parse_json_text(const std::string& text) {
     throw std::invalid_argument(r.why);
   } catch (const nlohmann::json::parse_error& e) {
     throw std::invalid_argument("not valid JSON: " + shortened(e.what()));
+  } catch (const nlohmann::json::out_of_range&) {
+    // The one range error of parsing: a number beyond a double (1e400). Name the field.
+    std::string field;
+    for (const std::string& p : path) field += p == "[]" ? "[]" : (field.empty() ? "" : ".") + shortened(p, 60);
+    throw std::invalid_argument((field.empty() ? std::string("a number") : "'" + field + "'") +
+                                " is too large for a double");
   }
 }
 

@@ -122,6 +122,10 @@ TEST(SweepCli, HostileGridFilesAndOutFoldersAreRefusedWithOneShortLine) {
   long_name["name"] = std::string(300, 'n');
   const std::string named = grid_file("named.json", long_name.dump());
   const std::string good = grid_file("good.json", good_text);
+  // A number beyond a double, where the JSON library has nothing to name but a position.
+  std::string huge_text = good_text;
+  huge_text.insert(huge_text.find("\"config\":{") + 10, "\"epsilon\":1e400,");
+  const std::string huge = grid_file("huge.json", huge_text);
   std::ofstream(dir.path() / "a_file") << "mine";
   struct Case {
     std::string args, message;
@@ -130,6 +134,11 @@ TEST(SweepCli, HostileGridFilesAndOutFoldersAreRefusedWithOneShortLine) {
       {"sweep " + deep + " --out " + out.string(), "grid " + deep + ": nests deeper than 64 levels"},
       {"sweep " + wide + " --out " + out.string(), "grid " + wide + ": description: expected a string, got [0,1,2,"},
       {"sweep " + duplicate + " --out " + out.string(), "grid " + duplicate + ": duplicate key 'name'"},
+      {"sweep " + huge + " --out " + out.string(), "grid " + huge + ": 'config.epsilon' is too large for a double"},
+      {"dataset build --scenario pendulum --grid " + huge + " --dir " + out.string(),
+       "grid " + huge + ": 'config.epsilon' is too large for a double"},
+      {"run --scenario pendulum --algo ddpg --seed 0 --grid " + huge + " --out " + out.string(),
+       "grid " + huge + ": 'config.epsilon' is too large for a double"},
       {"sweep " + named + " --out " + out.string(), "grid " + named + ": name: is 300 characters long; at most 100"},
       {"sweep /dev/zero --out " + out.string(), "grid /dev/zero: is larger than 1 MiB"},
       {"sweep " + dir.path().string() + " --out " + out.string(), "grid " + dir.path().string() + ": is a directory"},
