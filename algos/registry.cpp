@@ -7,6 +7,7 @@
 #include "algos/col_prior.hpp"
 #include "algos/rapid_rl.hpp"
 #include "algos/rapid_rl_return.hpp"
+#include "core/printable.hpp"
 
 namespace rapid {
 
@@ -64,7 +65,7 @@ const Algorithm& find_algorithm(const std::string& name) {
     if (a.name == name) return a;
   std::string known;
   for (const Algorithm& a : algorithms()) known += (known.empty() ? "" : ", ") + a.name;
-  throw std::invalid_argument("unknown algorithm '" + name + "'; expected one of " + known);
+  throw std::invalid_argument("unknown algorithm '" + printable(name) + "'; expected one of " + known);
 }
 
 }  // namespace rapid

@@ -1,6 +1,7 @@
 // The name → environment table behind `--scenario`.
 #include <stdexcept>
 
+#include "core/printable.hpp"
 #include "envs/driving_env.hpp"
 #include "envs/env.hpp"
 #include "envs/pendulum.hpp"
@@ -33,7 +34,7 @@ std::unique_ptr<Env> make_env(const std::string& name, const ScenarioSettings& s
   if (name == "pendulum") throw std::invalid_argument("scenario 'pendulum' takes no driving settings");
   std::string known;
   for (const auto& n : env_names()) known += (known.empty() ? "" : ", ") + n;
-  throw std::invalid_argument("unknown scenario '" + name + "'; expected one of " + known);
+  throw std::invalid_argument("unknown scenario '" + printable(name) + "'; expected one of " + known);
 }
 
 }  // namespace rapid

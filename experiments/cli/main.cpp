@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "core/printable.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
 
@@ -51,10 +52,10 @@ int main(int argc, char** argv) {
     try {
       return command.run();
     } catch (const rapid::UsageError& e) {
-      std::cerr << "rapid: error: " << e.what() << "\n";
+      std::cerr << "rapid: error: " << rapid::printable(e.what()) << "\n";
       return rapid::kExitUsage;
     } catch (const std::exception& e) {
-      std::cerr << "rapid: failed: " << e.what() << "\n";
+      std::cerr << "rapid: failed: " << rapid::printable(e.what()) << "\n";
       return rapid::kExitFailed;
     }
   }

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "core/printable.hpp"
 #include "experiments/run/json_input.hpp"
 
 namespace rapid {
@@ -50,7 +51,7 @@ namespace {
 // The row of `name`, which must be a key of `scenario`.
 const ConfigKey& key_of(const std::string& name, const std::string& scenario, const std::vector<ConfigKey>& keys) {
   const ConfigKey* key = find_config_key(name, keys);
-  if (!key) throw std::invalid_argument("unknown config key '" + name + "'");
+  if (!key) throw std::invalid_argument("unknown config key '" + printable(name) + "'");
   if (!key->applies_to(scenario))
     throw std::invalid_argument("config key '" + name + "' does not apply to scenario '" + scenario + "'");
   return *key;

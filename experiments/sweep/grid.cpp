@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "algos/registry.hpp"
+#include "core/printable.hpp"
 #include "envs/env.hpp"
 #include "experiments/run/config_keys.hpp"
 #include "experiments/run/dataset_build.hpp"
@@ -51,7 +52,7 @@ class GridChecker {
   explicit GridChecker(std::string label) : label_(std::move(label)) {}
 
   [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
-    throw std::invalid_argument("grid " + label_ + ": " + field + ": " + problem);
+    throw std::invalid_argument(printable("grid " + label_ + ": " + field + ": " + problem));
   }
 
   void only_known_keys(const json& object, const std::set<std::string>& known, const std::string& where) const {

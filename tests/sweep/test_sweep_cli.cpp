@@ -126,6 +126,9 @@ TEST(SweepCli, HostileGridFilesAndOutFoldersAreRefusedWithOneShortLine) {
   std::string huge_text = good_text;
   huge_text.insert(huge_text.find("\"config\":{") + 10, "\"epsilon\":1e400,");
   const std::string huge = grid_file("huge.json", huge_text);
+  json nul_name = json::parse(good_text);  // a NUL would end the message before it names anything
+  nul_name["name"] = std::string("a\0b", 3);
+  const std::string nul = grid_file("nul.json", nul_name.dump());
   std::ofstream(dir.path() / "a_file") << "mine";
   struct Case {
     std::string args, message;
@@ -135,6 +138,7 @@ TEST(SweepCli, HostileGridFilesAndOutFoldersAreRefusedWithOneShortLine) {
       {"sweep " + wide + " --out " + out.string(), "grid " + wide + ": description: expected a string, got [0,1,2,"},
       {"sweep " + duplicate + " --out " + out.string(), "grid " + duplicate + ": duplicate key 'name'"},
       {"sweep " + huge + " --out " + out.string(), "grid " + huge + ": 'config.epsilon' is too large for a double"},
+      {"sweep " + nul + " --out " + out.string(), "grid " + nul + ": name: 'a\\x00b' must be non-empty"},
       {"dataset build --scenario pendulum --grid " + huge + " --dir " + out.string(),
        "grid " + huge + ": 'config.epsilon' is too large for a double"},
       {"run --scenario pendulum --algo ddpg --seed 0 --grid " + huge + " --out " + out.string(),
