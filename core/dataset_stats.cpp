@@ -1,6 +1,7 @@
 #include "core/dataset_stats.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <stdexcept>
 
@@ -31,13 +32,17 @@ std::vector<double> uniform_edges(double lo, double hi, int bins) {
   if (!std::isfinite(lo) || !std::isfinite(hi) || lo > hi)
     throw std::invalid_argument("histogram: range [" + std::to_string(lo) + ", " + std::to_string(hi) +
                                 "] is not a finite interval");
-  if (lo == hi) {
-    lo -= 0.5;
-    hi += 0.5;
+  if (lo == hi) {  // every value the same: one unit around it, or a relative margin where 0.5 is below rounding
+    const double margin = std::max(0.5, std::abs(lo) * 0x1p-20);
+    lo -= margin;
+    hi += margin;
   }
   std::vector<double> edges(static_cast<std::size_t>(bins) + 1);
   for (int i = 0; i <= bins; ++i) edges[i] = lo + (hi - lo) * i / bins;
   edges.back() = hi;  // exact, so the maximum falls in the last bin despite rounding
+  // A range too narrow for its magnitude (1e38 to 1e38 + a few ulps) cannot hold `bins` distinct
+  // edges: one bin holds everything then, still a histogram.
+  if (std::adjacent_find(edges.begin(), edges.end(), std::greater_equal<double>()) != edges.end()) return {lo, hi};
   return edges;
 }
 

@@ -92,6 +92,23 @@ TEST(DatasetStats, ConstantRewardsGetAUnitWideRange) {
   EXPECT_DOUBLE_EQ(s.reward_std, 0.0);
 }
 
+// A valid dataset whose rewards are all huge and equal (1e38): ±0.5 is below rounding there, so
+// the range widens relative to the value; a degenerate histogram is still a histogram.
+TEST(DatasetStats, HugeEqualRewardsStillHaveAHistogram) {
+  Dataset d = hand_made();
+  d.rewards.setConstant(1e38f);
+  const DatasetStats s = dataset_stats(d, 10);
+  ASSERT_EQ(s.reward_histogram.counts.size(), 10u);
+  std::size_t in = 0;
+  for (std::size_t c : s.reward_histogram.counts) in += c;
+  EXPECT_EQ(in, 6u);
+  EXPECT_EQ(s.reward_histogram.outside, 0u);
+  // Ends a few ulps apart: one bin, everything in it.
+  const std::vector<double> narrow = uniform_edges(1e38, std::nextafter(1e38, 2e38), 10);
+  EXPECT_EQ(narrow.size(), 2u);
+  EXPECT_LT(narrow[0], narrow[1]);
+}
+
 TEST(DatasetStats, BadHistogramArgumentsThrow) {
   EXPECT_THROW(uniform_edges(0.0, 1.0, 0), std::invalid_argument);
   EXPECT_THROW(uniform_edges(1.0, 0.0, 4), std::invalid_argument);
