@@ -1,9 +1,12 @@
 #include "experiments/report/claims_markdown.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "algos/registry.hpp"
+#include "experiments/report/format.hpp"
 
 namespace rapid {
 
@@ -38,9 +41,90 @@ std::string non_paper_note(const Summary& s) {
          "paper's algorithms only).\n\n";
 }
 
+// A comparison's outcome in words: which side is higher, or within ±δ.
+std::string outcome_text(const Comparison& c, ComparisonOutcome o) {
+  switch (o) {
+    case ComparisonOutcome::kXBetter: return c.x + " higher";
+    case ComparisonOutcome::kYBetter: return c.y + " higher";
+    case ComparisonOutcome::kEquivalent: return "within ±" + short_number(c.delta);
+    case ComparisonOutcome::kUndecided: return "undecided";
+  }
+  return "?";
+}
+
+std::string p_text(double p) {
+  if (std::isnan(p)) return "—";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, p < 0.001 ? "%.1e" : "%.3f", p);
+  return buf;
+}
+
+std::string decided_intro(const Decisions& d) {
+  std::ostringstream out;
+  out << "Verdicts are decided (docs/decisions.md): each claim's comparisons are tested on the per-seed numbers "
+         "(Welch's t test for a difference, TOST for equivalence within ±δ), "
+      << d.family_size << " hypotheses under Holm's procedure at a family-wise error of α = " << d.settings.alpha
+      << ". δ:";
+  for (const auto& [scenario, delta] : d.settings.delta) out << " " << scenario << " " << short_number(delta) << ";";
+  out << " " << d.settings.delta_rule << ". CONFIRMED: the claim holds even if every undecided comparison went "
+      << "against it; REFUTED: it fails even if every undecided comparison went for it; UNDECIDED otherwise. "
+      << "\"Seeds to resolve\": per algorithm, for power " << d.settings.power
+      << " against a difference of δ at the observed spread. The point-mean verdict (PASS/FAIL on means alone, not a "
+         "decision) is kept beside it.\n\n";
+  return out.str();
+}
+
+std::string comparisons_table(const Decisions& d, const DecidedClaim& claim) {
+  if (claim.comparisons.empty()) return "";
+  std::ostringstream out;
+  out << "| where | metric | x vs y | seeds | x − y | p (difference) | p (within ±δ) | outcome | the claim needs | seeds to "
+         "resolve |\n|---|---|---|---|---:|---:|---:|---|---|---:|\n";
+  for (std::size_t i : claim.comparisons) {
+    const Comparison& c = d.comparisons[i];
+    out << "| " << c.where << " | " << c.metric << " | " << c.x << " vs " << c.y << (c.paired ? " (paired)" : "") << " | "
+        << c.xs.size() << " / " << c.ys.size() << " | " << short_number(c.d.diff) << " | " << p_text(c.p_difference)
+        << " | " << p_text(c.p_equivalence) << " | " << outcome_text(c, c.outcome) << " | " << outcome_text(c, c.wanted)
+        << " | " << (c.seeds_needed ? std::to_string(*c.seeds_needed) : "—") << " |\n";
+  }
+  return out.str();
+}
+
+const ClaimResult* point_mean(const Summary& s, const std::string& id) {
+  for (const ClaimResult& c : s.claims)
+    if (c.id == id) return &c;
+  return nullptr;
+}
+
+// claims.md with decided verdicts, the point-mean ones beside them.
+std::string decided_claims_markdown(const Summary& s) {
+  const Decisions& d = *s.decisions;
+  std::ostringstream out;
+  out << "# Claims decided — grid `" << s.grid.name << "`\n\n" << decided_intro(d) << non_paper_note(s)
+      << "| Claim | Verdict | Why | Point-mean verdict |\n|---|---|---|---|\n";
+  for (const DecidedClaim& c : d.claims) {
+    const ClaimResult* pm = point_mean(s, c.id);
+    out << "| " << c.id << " | " << c.verdict << " | " << c.reason << " | " << (pm ? pm->verdict : "—") << " |\n";
+  }
+  for (const DecidedClaim& c : d.claims) {
+    const ClaimResult* pm = point_mean(s, c.id);
+    out << "\n## " << c.id << ": " << c.verdict << "\n\n";
+    if (pm) out << "Claim: " << pm->statement << "\n\n";
+    out << "Decided: " << c.reason << ".\n";
+    const std::string table = comparisons_table(d, c);
+    if (!table.empty()) out << "\n" << table;
+    if (pm) {
+      out << "\nPoint-mean check (not a decision): " << pm->verdict << ". " << pm->definition << " " << pm->reason << ".\n";
+      const std::string means = markdown_table(*pm);
+      if (!means.empty()) out << "\n" << means;
+    }
+  }
+  return out.str();
+}
+
 }  // namespace
 
 std::string claims_markdown(const Summary& s) {
+  if (s.decisions) return decided_claims_markdown(s);
   std::ostringstream out;
   out << "# Claims check — grid `" << s.grid.name << "`\n\n"
       << "Each claim of the paper (docs/reports.md §claims.md) checked against this sweep's ok runs. Values are means over seeds of the "

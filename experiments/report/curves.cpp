@@ -1,5 +1,7 @@
 #include "experiments/report/curves.hpp"
 
+#include <limits>
+
 #include <map>
 
 #include "core/statistics.hpp"
@@ -47,6 +49,18 @@ std::vector<std::pair<double, double>> eval_points(const nlohmann::json& record)
     const nlohmann::json &x = point[x_key], &y = point["return_mean"];
     if (x.is_number() && y.is_number()) out.emplace_back(x.get<double>(), y.get<double>());
   }
+  return out;
+}
+
+std::vector<std::tuple<double, double, double>> bc_loss_points(const nlohmann::json& record) {
+  std::vector<std::tuple<double, double, double>> out;
+  if (!record.contains("bc_loss") || !record["bc_loss"].is_array()) return out;
+  const auto number = [](const nlohmann::json& p, const char* key) {
+    return p.contains(key) && p[key].is_number() ? p[key].get<double>() : std::numeric_limits<double>::quiet_NaN();
+  };
+  for (const nlohmann::json& point : record["bc_loss"])
+    if (point.is_object() && point.contains("step") && point["step"].is_number())
+      out.emplace_back(point["step"].get<double>(), number(point, "prior"), number(point, "online"));
   return out;
 }
 

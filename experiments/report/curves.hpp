@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "experiments/report/summary.hpp"
@@ -28,5 +29,8 @@ std::vector<std::pair<double, double>> eval_points(const nlohmann::json& record)
 // Trapezoid area under the mean curve divided by its step range (a step-weighted average return);
 // nullopt with fewer than two points.
 std::optional<double> normalized_area(const MeanCurve& curve);
+
+// A record's BC-loss log as (step, prior, online), NaN for a null loss.
+std::vector<std::tuple<double, double, double>> bc_loss_points(const nlohmann::json& record);
 
 }  // namespace rapid

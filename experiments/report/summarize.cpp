@@ -7,6 +7,7 @@
 #include "core/hash.hpp"
 #include "experiments/report/cell_records.hpp"
 #include "experiments/report/claims.hpp"
+#include "experiments/report/decisions.hpp"
 #include "experiments/report/curves.hpp"
 #include "experiments/report/dataset_summary.hpp"
 #include "experiments/run/dataset_build.hpp"
@@ -68,6 +69,7 @@ CellSummary summarize_cell(const SweepFolder& folder, const std::vector<const Sw
     if (loaded.result.final_return) cell.finals.push_back(*loaded.result.final_return);
     if (loaded.record) {
       loaded.result.eval = eval_points(*loaded.record);
+      loaded.result.bc_loss = bc_loss_points(*loaded.record);
       records.push_back(std::move(*loaded.record));
       const nlohmann::json& config = records.back().contains("config") ? records.back()["config"] : nlohmann::json();
       if (config.is_object() && config.contains("epsilon") && config["epsilon"].is_number() &&
@@ -272,7 +274,10 @@ Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptio
       if (!ref.is_null()) s.reference[scenario] = ref;
     }
   }
-  if (options.claims) s.claims = check_claims(s);
+  if (options.claims) {
+    s.claims = check_claims(s);
+    if (const auto settings = load_decision_settings(s.grid.profile)) s.decisions = decide_claims(s, *settings);
+  }
   return s;
 }
 

@@ -15,8 +15,10 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
+#include "core/hypothesis_tests.hpp"
 #include "core/statistics.hpp"
 #include "experiments/sweep/grid.hpp"
 
@@ -34,6 +36,8 @@ struct SeedResult {
   std::string error;                   // one line for anything but ok
   // Every evaluation of an ok record: (step, return_mean), the x of Figure 2; for runs.csv.
   std::vector<std::pair<double, double>> eval;
+  // Its BC-loss log: (step, prior, online), NaN where a loss is null (decided claim C6).
+  std::vector<std::tuple<double, double, double>> bc_loss;
 };
 
 // A curve averaged over the ok seeds at each step; n = how many seeds had a point there.
@@ -134,6 +138,46 @@ struct BootstrapSettings {
   double confidence = 0.95;
 };
 
+// Decided claims (docs/decisions.md; experiments/report/decisions.hpp computes them).
+// A profile's decision rule, experiments/configs/<profile>/decisions.json.
+struct DecisionSettings {
+  double alpha = 0.05;
+  double power = 0.8;
+  std::map<std::string, double> delta;  // per scenario, in return units
+  std::string delta_rule;               // how δ was chosen, in words
+};
+
+enum class ComparisonOutcome { kXBetter, kYBetter, kEquivalent, kUndecided };
+const char* outcome_name(ComparisonOutcome o);  // "X better" style text is built by the reports
+
+struct Comparison {
+  std::string where;   // "merge / medium", "merge / final+medium, all steps"
+  std::string metric;  // "final return", "curve area", "BC loss"
+  std::string x, y;    // what is compared (an algorithm or "CoL-prior final+medium", "prior")
+  ComparisonOutcome wanted = ComparisonOutcome::kXBetter;  // the outcome the claim needs
+  bool paired = false;
+  std::optional<double> delta;  // the equivalence margin; none: no equivalence test
+  std::vector<double> xs, ys;
+  MeanDifference d;
+  double p_difference = 0.0, p_equivalence = 0.0;  // NaN where not computed
+  ComparisonOutcome outcome = ComparisonOutcome::kUndecided;
+  std::optional<int> seeds_needed;  // undecided ones: per side, to resolve δ (or the observed gap)
+};
+
+struct DecidedClaim {
+  std::string id;
+  std::string verdict;  // CONFIRMED | REFUTED | UNDECIDED | N/A
+  std::string reason;
+  std::vector<std::size_t> comparisons;  // indices into Decisions::comparisons
+};
+
+struct Decisions {
+  DecisionSettings settings;
+  int family_size = 0;  // hypotheses under Holm's control
+  std::vector<Comparison> comparisons;
+  std::vector<DecidedClaim> claims;
+};
+
 struct Summary {
   std::filesystem::path sweep_dir;
   Grid grid;
@@ -147,6 +191,7 @@ struct Summary {
   std::map<std::string, nlohmann::json> reference;  // per scenario: the reference agent's final result
   std::vector<DatasetSummary> datasets;
   std::vector<ClaimResult> claims;
+  std::optional<Decisions> decisions;  // where the profile has a decision rule
   std::vector<std::string> warnings;  // printed by `rapid summarize`
 
   const CellSummary* find(const std::string& scenario, const std::string& dataset, const std::string& algo) const;

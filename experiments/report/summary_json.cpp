@@ -55,6 +55,37 @@ nlohmann::json cell_json(const CellSummary& c) {
   return j;
 }
 
+nlohmann::json decisions_json(const Decisions& d) {
+  nlohmann::json comparisons = nlohmann::json::array();
+  for (const Comparison& c : d.comparisons)
+    comparisons.push_back({{"where", c.where},
+                           {"metric", c.metric},
+                           {"x", c.x},
+                           {"y", c.y},
+                           {"paired", c.paired},
+                           {"delta", json_number(c.delta)},
+                           {"n_x", c.xs.size()},
+                           {"n_y", c.ys.size()},
+                           {"difference", json_number(c.d.diff)},
+                           {"se", json_number(c.d.se)},
+                           {"df", json_number(c.d.df)},
+                           {"p_difference", json_number(c.p_difference)},
+                           {"p_equivalence", json_number(c.p_equivalence)},
+                           {"outcome", outcome_name(c.outcome)},
+                           {"wanted", outcome_name(c.wanted)},
+                           {"seeds_needed", c.seeds_needed ? nlohmann::json(*c.seeds_needed) : nlohmann::json(nullptr)}});
+  nlohmann::json claims = nlohmann::json::array();
+  for (const DecidedClaim& c : d.claims)
+    claims.push_back({{"id", c.id}, {"verdict", c.verdict}, {"reason", c.reason}, {"comparisons", c.comparisons}});
+  return {{"alpha", d.settings.alpha},
+          {"power", d.settings.power},
+          {"delta", d.settings.delta},
+          {"delta_rule", d.settings.delta_rule},
+          {"family_size", d.family_size},
+          {"comparisons", comparisons},
+          {"claims", claims}};
+}
+
 nlohmann::json sensitivity_json(const SensitivityLine& l) {
   nlohmann::json ci = nlohmann::json::array();
   for (const auto& i : l.ci) ci.push_back(json_interval(i));
@@ -145,6 +176,7 @@ nlohmann::json summary_to_json(const Summary& s) {
 
   j["claims"] = nlohmann::json::array();
   for (const ClaimResult& c : s.claims) j["claims"].push_back(claim_json(c));
+  if (s.decisions) j["decisions"] = decisions_json(*s.decisions);  // absent without a decision rule
   return j;
 }
 

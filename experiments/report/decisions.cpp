@@ -1,0 +1,333 @@
+#include "experiments/report/decisions.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <stdexcept>
+#include <tuple>
+
+#include "experiments/report/curves.hpp"
+#include "experiments/report/format.hpp"
+#include "experiments/run/json_input.hpp"
+#include "experiments/run/run_config.hpp"
+
+namespace rapid {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+bool has(const std::vector<std::string>& names, const std::string& x) {
+  return std::find(names.begin(), names.end(), x) != names.end();
+}
+
+// What the claims compare, gathered before any test runs.
+struct Group {
+  std::vector<std::size_t> comparisons;  // the group holds when every one of them goes as wanted
+};
+struct ClaimSpec {
+  std::string id;
+  std::vector<Group> groups;
+  int needed = 0;  // groups that must hold
+  std::string not_applicable;
+};
+
+std::vector<double> seed_areas(const CellSummary& cell) {
+  std::vector<double> out;
+  for (const SeedResult& r : cell.seeds) {
+    if (!r.final_return || r.eval.empty()) continue;
+    MeanCurve curve;
+    for (const auto& [step, ret] : r.eval) {
+      curve.step.push_back(step);
+      curve.mean.push_back(ret);
+    }
+    if (const auto a = normalized_area(curve)) out.push_back(*a);
+  }
+  return out;
+}
+
+// Per ok seed, the mean prior and online BC loss over the logged steps in [from, to].
+std::pair<std::vector<double>, std::vector<double>> seed_bc_means(const CellSummary& cell, double from, double to) {
+  std::vector<double> prior, online;
+  for (const SeedResult& r : cell.seeds) {
+    if (!r.final_return) continue;
+    double p = 0.0, o = 0.0;
+    int n = 0;
+    for (const auto& [step, bp, bo] : r.bc_loss)
+      if (step >= from && step <= to && std::isfinite(bp) && std::isfinite(bo)) {
+        p += bp;
+        o += bo;
+        ++n;
+      }
+    if (n == 0) continue;
+    prior.push_back(p / n);
+    online.push_back(o / n);
+  }
+  return {prior, online};
+}
+
+class Builder {
+ public:
+  Builder(const Summary& s, const DecisionSettings& settings) : s_(s), settings_(settings) {}
+
+  std::size_t add(Comparison c) {
+    out_.comparisons.push_back(std::move(c));
+    return out_.comparisons.size() - 1;
+  }
+
+  std::optional<double> delta(const std::string& scenario) const {
+    const auto it = settings_.delta.find(scenario);
+    return it == settings_.delta.end() ? std::nullopt : std::optional<double>(it->second);
+  }
+
+  // C1 / C5: per row, RAPID-RL against each other paper algorithm on a per-seed metric.
+  ClaimSpec most_rows(const std::string& id, const std::string& metric,
+                      const std::function<std::vector<double>(const CellSummary&)>& values) {
+    ClaimSpec c{id, {}, 0, {}};
+    if (!has(s_.grid.algos, "rapid-rl")) return na(c, "the grid has no rapid-rl");
+    if (std::none_of(s_.grid.algos.begin(), s_.grid.algos.end(), is_paper_baseline))
+      return na(c, "the grid has no other algorithm to compare with");
+    for (const TableRow& row : s_.rows) {
+      Group g;
+      const CellSummary* ours = s_.column_cell(row, "rapid-rl");
+      for (const auto& [algo, index] : row.cells) {
+        if (!is_paper_baseline(algo)) continue;
+        g.comparisons.push_back(add(two_sample(row_label(row), metric, algo_display_name("rapid-rl"),
+                                               algo_display_name(algo), ours, &s_.cells[index], values,
+                                               delta(row.scenario))));
+      }
+      c.groups.push_back(g);
+    }
+    c.needed = static_cast<int>((2 * c.groups.size() + 2) / 3);  // ≥ 2/3 of the rows
+    return c;
+  }
+
+  // C2 / C3: per row, `x` against `y` on final return, `wanted` the outcome the claim needs.
+  ClaimSpec every_row(const std::string& id, const std::string& x, const std::string& y, ComparisonOutcome wanted) {
+    ClaimSpec c{id, {}, 0, {}};
+    for (const std::string& a : {x, y})
+      if (!has(s_.grid.algos, a)) return na(c, "the grid has no " + a);
+    for (const TableRow& row : s_.rows) {
+      Comparison cmp = two_sample(row_label(row), "final return", algo_display_name(x), algo_display_name(y),
+                                  s_.column_cell(row, x), s_.column_cell(row, y), finals, delta(row.scenario));
+      cmp.wanted = wanted;
+      c.groups.push_back({{add(std::move(cmp))}});
+    }
+    c.needed = static_cast<int>(c.groups.size());
+    return c;
+  }
+
+  ClaimSpec c4() {
+    ClaimSpec c{"C4", {}, 0, {}};
+    if (!has(s_.grid.algos, "col-prior")) return na(c, "the grid has no col-prior");
+    for (const char* d : {"initial", "final+medium"})
+      if (!has(s_.grid.datasets, d)) return na(c, std::string("the grid has no ") + d + " dataset");
+    for (const std::string& scenario : s_.grid.scenarios) {
+      Comparison cmp = two_sample(scenario, "final return", algo_display_name("col-prior") + " " + dataset_display_name("final+medium"),
+                                  algo_display_name("col-prior") + " " + dataset_display_name("initial"),
+                                  s_.find(scenario, "final+medium", "col-prior"), s_.find(scenario, "initial", "col-prior"),
+                                  finals, delta(scenario));
+      c.groups.push_back({{add(std::move(cmp))}});
+    }
+    c.needed = static_cast<int>(c.groups.size());
+    return c;
+  }
+
+  ClaimSpec c6() {
+    ClaimSpec c{"C6", {}, 0, {}};
+    if (!has(s_.grid.scenarios, "merge")) return na(c, "the grid has no merge scenario");
+    if (!has(s_.grid.algos, "rapid-rl")) return na(c, "the grid has no rapid-rl");
+    for (const char* d : {"initial", "final+medium"})
+      if (!has(s_.grid.datasets, d)) return na(c, std::string("the grid has no ") + d + " dataset");
+    Group g;
+    const auto add_bc = [&](const std::string& dataset, const std::string& window, double from, double to, ComparisonOutcome wanted) {
+      const CellSummary* cell = s_.find("merge", dataset, "rapid-rl");
+      Comparison cmp;
+      cmp.where = "merge / " + dataset + ", " + window;
+      cmp.metric = "BC loss";
+      cmp.x = "prior";
+      cmp.y = "online";
+      cmp.paired = true;
+      cmp.wanted = wanted;
+      if (cell) std::tie(cmp.xs, cmp.ys) = seed_bc_means(*cell, from, to);
+      g.comparisons.push_back(add(std::move(cmp)));
+    };
+    const auto range = [&](const std::string& dataset) -> std::pair<double, double> {
+      const CellSummary* cell = s_.find("merge", dataset, "rapid-rl");
+      if (!cell || cell->bc_prior.empty()) return {0.0, -1.0};
+      return {cell->bc_prior.step.front(), cell->bc_prior.step.back()};
+    };
+    const auto [g0, g1] = range("final+medium");
+    add_bc("final+medium", "all steps", g0, g1, ComparisonOutcome::kYBetter);  // "better" = larger: prior below online
+    const auto [p0, p1] = range("initial");
+    const double fifth = (p1 - p0) * 0.2;
+    add_bc("initial", "first 20 % of steps", p0, p0 + fifth, ComparisonOutcome::kYBetter);
+    add_bc("initial", "last 20 % of steps", p1 - fifth, p1, ComparisonOutcome::kXBetter);
+    c.groups.push_back(g);
+    c.needed = 1;
+    return c;
+  }
+
+  Decisions finish(std::vector<ClaimSpec> specs) {
+    out_.settings = settings_;
+    run_tests();
+    for (const ClaimSpec& spec : specs) out_.claims.push_back(verdict(spec));
+    return std::move(out_);
+  }
+
+ private:
+  static std::vector<double> finals(const CellSummary& c) { return c.finals; }
+  static std::string row_label(const TableRow& row) { return row.scenario + " / " + row.dataset; }
+
+  static ClaimSpec na(ClaimSpec c, std::string why) {
+    c.not_applicable = std::move(why);
+    return c;
+  }
+
+  static Comparison two_sample(std::string where, std::string metric, std::string x, std::string y, const CellSummary* cx,
+                               const CellSummary* cy,
+                               const std::function<std::vector<double>(const CellSummary&)>& values,
+                               std::optional<double> delta) {
+    Comparison c;
+    c.where = std::move(where);
+    c.metric = std::move(metric);
+    c.x = std::move(x);
+    c.y = std::move(y);
+    c.delta = delta;
+    if (cx) c.xs = values(*cx);
+    if (cy) c.ys = values(*cy);
+    return c;
+  }
+
+  // Every hypothesis into one Holm family; then each comparison's outcome and, if undecided, the
+  // seeds that would resolve it.
+  void run_tests() {
+    std::vector<double> p;
+    std::vector<std::pair<std::size_t, bool>> owner;  // (comparison, is the equivalence test)
+    for (std::size_t i = 0; i < out_.comparisons.size(); ++i) {
+      Comparison& c = out_.comparisons[i];
+      c.d = c.paired && c.xs.size() == c.ys.size() ? paired_difference(c.xs, c.ys) : welch_difference(c.xs, c.ys);
+      c.p_difference = p_difference(c.d);
+      c.p_equivalence = c.delta ? p_equivalence(c.d, *c.delta) : kNaN;
+      p.push_back(c.p_difference);
+      owner.emplace_back(i, false);
+      if (c.delta) {
+        p.push_back(c.p_equivalence);
+        owner.emplace_back(i, true);
+      }
+    }
+    out_.family_size = static_cast<int>(p.size());
+    const std::vector<bool> rejected = holm_rejections(p, settings_.alpha);
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      if (!rejected[k]) continue;
+      Comparison& c = out_.comparisons[owner[k].first];
+      if (!owner[k].second) c.outcome = c.d.diff > 0 ? ComparisonOutcome::kXBetter : ComparisonOutcome::kYBetter;
+      else if (c.outcome == ComparisonOutcome::kUndecided) c.outcome = ComparisonOutcome::kEquivalent;  // a difference takes precedence
+    }
+    for (Comparison& c : out_.comparisons) {
+      if (c.outcome != ComparisonOutcome::kUndecided || std::isnan(c.d.se)) continue;
+      const double effect = c.delta ? *c.delta : std::abs(c.d.diff);
+      if (!(effect > 0.0)) continue;
+      // The spread behind the standard error, per side (paired: of the differences, over √2).
+      const double sd = c.paired ? c.d.se * std::sqrt(static_cast<double>(c.xs.size())) / std::sqrt(2.0)
+                                 : c.d.se / std::sqrt(1.0 / c.xs.size() + 1.0 / c.ys.size());
+      c.seeds_needed = seeds_needed(sd, effect, settings_.alpha / std::max(1, out_.family_size), settings_.power);
+    }
+  }
+
+  DecidedClaim verdict(const ClaimSpec& spec) const {
+    DecidedClaim d;
+    d.id = spec.id;
+    if (!spec.not_applicable.empty()) {
+      d.verdict = "N/A";
+      d.reason = spec.not_applicable;
+      return d;
+    }
+    int sure = 0, possible = 0, undecided = 0;
+    for (const Group& g : spec.groups) {
+      bool all_for = true, none_against = true;
+      for (std::size_t i : g.comparisons) {
+        const Comparison& c = out_.comparisons[i];
+        d.comparisons.push_back(i);
+        all_for = all_for && c.outcome == c.wanted;
+        none_against = none_against && (c.outcome == c.wanted || c.outcome == ComparisonOutcome::kUndecided);
+        undecided += c.outcome == ComparisonOutcome::kUndecided;
+      }
+      sure += all_for;
+      possible += none_against;
+    }
+    const int total = static_cast<int>(spec.groups.size());
+    if (total > 0 && sure >= spec.needed) d.verdict = "CONFIRMED";
+    else if (total == 0 || possible < spec.needed) d.verdict = "REFUTED";
+    else d.verdict = "UNDECIDED";
+    d.reason = std::to_string(sure) + " of " + std::to_string(total) + " hold as decided, " + std::to_string(possible) +
+               " could (needs " + std::to_string(spec.needed) + "); " + std::to_string(undecided) +
+               " comparison" + (undecided == 1 ? "" : "s") + " undecided";
+    return d;
+  }
+
+  const Summary& s_;
+  const DecisionSettings& settings_;
+  Decisions out_;
+};
+
+}  // namespace
+
+const char* outcome_name(ComparisonOutcome o) {
+  switch (o) {
+    case ComparisonOutcome::kXBetter: return "x better";
+    case ComparisonOutcome::kYBetter: return "y better";
+    case ComparisonOutcome::kEquivalent: return "equivalent";
+    case ComparisonOutcome::kUndecided: return "undecided";
+  }
+  return "?";
+}
+
+std::optional<DecisionSettings> load_decision_settings(const std::string& profile) {
+  const std::string path = config_dir() + "/" + profile + "/decisions.json";
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return std::nullopt;
+  const auto fail = [&](const std::string& why) { throw std::invalid_argument("decision settings " + path + ": " + why); };
+  nlohmann::json j;
+  try {
+    j = read_json_input(path);
+  } catch (const std::invalid_argument& e) {
+    fail(e.what());
+  }
+  DecisionSettings s;
+  const auto in_unit = [&](const char* key, double& field) {
+    if (!j.contains(key) || !j[key].is_number() || !(j[key].get<double>() > 0.0 && j[key].get<double>() < 1.0))
+      fail(std::string(key) + ": expected a number in (0, 1)");
+    field = j[key].get<double>();
+  };
+  in_unit("alpha", s.alpha);
+  in_unit("power", s.power);
+  if (!j.contains("delta") || !j["delta"].is_object()) fail("delta: expected an object of scenario: margin");
+  for (const auto& [scenario, v] : j["delta"].items()) {
+    if (!v.is_number() || !(v.get<double>() > 0.0)) fail("delta." + scenario + ": expected a positive number");
+    s.delta[scenario] = v.get<double>();
+  }
+  s.delta_rule = j.value("delta_rule", "");
+  return s;
+}
+
+Decisions decide_claims(const Summary& s, const DecisionSettings& settings) {
+  Builder b(s, settings);
+  std::vector<ClaimSpec> specs;
+  if (!s.grid.axes.empty()) {
+    for (const char* id : {"C1", "C2", "C3", "C4", "C5", "C6"})
+      specs.push_back({id, {}, 0, "the grid has axes: the claims are checked on grids without"});
+    return b.finish(std::move(specs));
+  }
+  specs.push_back(b.most_rows("C1", "final return", [](const CellSummary& c) { return c.finals; }));
+  specs.push_back(b.every_row("C2", "rapid-rl", "ddpg", ComparisonOutcome::kXBetter));
+  specs.push_back(b.every_row("C3", "col-all", "ddpg", ComparisonOutcome::kYBetter));
+  specs.push_back(b.c4());
+  specs.push_back(b.most_rows("C5", "curve area", seed_areas));
+  specs.push_back(b.c6());
+  return b.finish(std::move(specs));
+}
+
+}  // namespace rapid

@@ -1,0 +1,145 @@
+// Decided claims (docs/decisions.md): the three verdicts on hand-made sweeps, and the whole
+// procedure's error rates by simulation: with no true difference it decides a difference in at
+// most α of 2,000 simulated tables; with a true difference of 2δ it decides it, the right way.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/rng.hpp"
+#include "experiments/report/claims_markdown.hpp"
+#include "experiments/report/decisions.hpp"
+#include "experiments/report/summarize.hpp"
+#include "tests/datasets/dataset_fixtures.hpp"
+#include "tests/reports/report_test_util.hpp"
+
+namespace rapid {
+namespace {
+
+using report_test::FakeRun;
+
+const std::vector<std::string> kAlgos = {"rapid-rl", "rlpd", "col-prior", "col-all", "ddpg"};
+const std::vector<std::string> kDatasets = {"initial", "final+medium"};
+
+// A merge sweep (short profile: δ = 11.8) of `seeds` seeds whose final returns are
+// mean(dataset, algo) + the seed's offset, offsets spread symmetrically with the given std.
+class DecisionsTest : public ::testing::Test {
+ protected:
+  testing::ScratchDir scratch;
+  std::filesystem::path sweep = scratch.path() / "sweep";
+
+  Summary make(const std::function<double(const std::string& dataset, const std::string& algo)>& mean, int seeds,
+               double spread) {
+    std::vector<int> seed_list;
+    for (int i = 0; i < seeds; ++i) seed_list.push_back(i);
+    report_test::write_grid(sweep, report_test::make_grid("decide", {"merge"}, kDatasets, kAlgos, seed_list));
+    for (const std::string& algo : kAlgos)
+      for (const std::string& dataset : kDatasets) {
+        if (algo == "ddpg" && dataset != kDatasets.front()) continue;
+        for (int i = 0; i < seeds; ++i) {
+          FakeRun r = report_test::pendulum_run(algo == "ddpg" ? "" : dataset, algo, static_cast<std::uint64_t>(i), 0.0);
+          r.scenario = "merge";
+          // Offsets −1, +1, −1, … scaled to the spread (population std exactly `spread` for even n).
+          r.final_return = mean(algo == "ddpg" ? "" : dataset, algo) + (i % 2 == 0 ? -spread : spread);
+          r.eval = {{0, 0.0}, {500, r.final_return / 2}, {1000, r.final_return}};
+          report_test::write_run(sweep, r);
+        }
+      }
+    return build_summary(sweep);
+  }
+
+  static const DecidedClaim& claim(const Summary& s, const std::string& id) {
+    for (const DecidedClaim& c : s.decisions->claims)
+      if (c.id == id) return c;
+    throw std::runtime_error("no claim " + id);
+  }
+};
+
+TEST_F(DecisionsTest, ClearDifferencesConfirmAndRefute) {
+  // RAPID-RL 40 above everything (> 3δ), CoL-all 40 below DDPG, CoL-prior better with better data.
+  const Summary s = make(
+      [](const std::string& dataset, const std::string& algo) {
+        if (algo == "rapid-rl") return 200.0;
+        if (algo == "col-all") return 120.0;
+        if (algo == "col-prior") return dataset == "initial" ? 150.0 : 165.0;
+        return 160.0;
+      },
+      10, 2.0);
+  ASSERT_TRUE(s.decisions.has_value());
+  EXPECT_EQ(claim(s, "C1").verdict, "CONFIRMED") << claim(s, "C1").reason;
+  EXPECT_EQ(claim(s, "C2").verdict, "CONFIRMED");
+  EXPECT_EQ(claim(s, "C3").verdict, "CONFIRMED");
+  EXPECT_EQ(claim(s, "C4").verdict, "CONFIRMED");
+  EXPECT_EQ(claim(s, "C5").verdict, "CONFIRMED");  // curves proportional to the finals
+  EXPECT_EQ(claim(s, "C6").verdict, "UNDECIDED");  // these records log no BC losses: nothing to decide from
+  const std::string md = claims_markdown(s);
+  EXPECT_NE(md.find("| C2 | CONFIRMED |"), std::string::npos) << md.substr(0, 2000);
+  EXPECT_NE(md.find("Point-mean verdict"), std::string::npos);
+
+  // DDPG clearly above RAPID-RL on one row: C2 fails whatever the undecided rest would do.
+  const Summary worse = make(
+      [](const std::string& dataset, const std::string& algo) {
+        if (algo == "rapid-rl") return dataset == "initial" ? 100.0 : 200.0;
+        return 160.0;
+      },
+      10, 2.0);
+  EXPECT_EQ(claim(worse, "C2").verdict, "REFUTED") << claim(worse, "C2").reason;
+  // Equal within δ: "no win" is decided, C2 refuted too (equivalence counts against "better").
+  const Summary same = make([](const std::string&, const std::string&) { return 160.0; }, 10, 2.0);
+  EXPECT_EQ(claim(same, "C2").verdict, "REFUTED") << claim(same, "C2").reason;
+  for (std::size_t i : claim(same, "C2").comparisons)
+    EXPECT_EQ(same.decisions->comparisons[i].outcome, ComparisonOutcome::kEquivalent);
+}
+
+TEST_F(DecisionsTest, TooFewOrTooNoisySeedsLeaveAClaimUndecidedWithTheSeedsItNeeds) {
+  const Summary s = make(
+      [](const std::string&, const std::string& algo) { return algo == "rapid-rl" ? 170.0 : 160.0; }, 4, 30.0);
+  const DecidedClaim& c2 = claim(s, "C2");
+  EXPECT_EQ(c2.verdict, "UNDECIDED") << c2.reason;
+  for (std::size_t i : c2.comparisons) {
+    const Comparison& c = s.decisions->comparisons[i];
+    EXPECT_EQ(c.outcome, ComparisonOutcome::kUndecided);
+    ASSERT_TRUE(c.seeds_needed.has_value());
+    EXPECT_GT(*c.seeds_needed, 4);
+  }
+}
+
+// The whole claims check on simulated tables: the sweep's structure once, then each experiment's
+// per-seed finals drawn anew (10 seeds, std 100) and every claim decided again.
+TEST_F(DecisionsTest, TheProcedureDecidesAWrongDifferenceInAtMostAlphaOfSimulatedTables) {
+  Summary s = make([](const std::string&, const std::string&) { return 500.0; }, 10, 1.0);
+  const DecisionSettings settings = *load_decision_settings("short");
+  for (CellSummary& c : s.cells)
+    for (SeedResult& r : c.seeds) r.eval.clear();  // only the final returns vary here
+  Rng rng(99);
+  constexpr int kExperiments = 2000;
+  int any_wrong = 0, detected = 0, wrong_way = 0;
+  const double delta = settings.delta.at("merge");
+  for (int e = 0; e < kExperiments; ++e) {
+    // No true difference anywhere.
+    for (CellSummary& c : s.cells)
+      for (double& f : c.finals) f = rng.normal(500.0, 100.0);
+    const Decisions null = decide_claims(s, settings);
+    bool wrong = false;
+    for (const Comparison& c : null.comparisons)
+      wrong = wrong || c.outcome == ComparisonOutcome::kXBetter || c.outcome == ComparisonOutcome::kYBetter;
+    any_wrong += wrong;
+  }
+  EXPECT_LE(any_wrong / double(kExperiments), 0.05 + 3 * std::sqrt(0.05 * 0.95 / kExperiments));
+
+  // RAPID-RL truly 2δ above DDPG, std small enough that 10 seeds have power for it at Holm's level.
+  for (int e = 0; e < 500; ++e) {
+    for (CellSummary& c : s.cells)
+      for (double& f : c.finals) f = rng.normal(c.algo == "rapid-rl" ? 500.0 + 2 * delta : 500.0, delta / 2);
+    const Decisions d = decide_claims(s, settings);
+    for (const Comparison& c : d.comparisons) {
+      if (c.metric != "final return" || c.x != "RAPID-RL" || c.y != "DDPG") continue;
+      detected += c.outcome == ComparisonOutcome::kXBetter;
+      wrong_way += c.outcome == ComparisonOutcome::kYBetter;
+    }
+  }
+  EXPECT_EQ(wrong_way, 0);
+  EXPECT_GE(detected / (500.0 * 2), 0.8);  // two rows, power 0.8 as stated
+}
+
+}  // namespace
+}  // namespace rapid
