@@ -219,14 +219,8 @@ int sweep_task_command(const SweepOptions& o) {
   }
 }
 
-int sweep_command(const SweepOptions& o) {
-  if (o.run_job >= 0) return sweep_task_command(o);
-  Grid grid;
-  try {
-    grid = load_grid(o.grid);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+// The sweep of an already parsed grid (from `rapid sweep GRID` or `rapid recheck`).
+int sweep_of(const SweepOptions& o, const Grid& grid) {
   if (std::find(kBackends.begin(), kBackends.end(), o.backend) == kBackends.end())
     throw UsageError("--backend: '" + o.backend + "' is not available; expected local or slurm");
   if (o.out_given && o.out.empty()) throw UsageError("--out: must name a folder, got an empty path");
@@ -288,7 +282,27 @@ int sweep_command(const SweepOptions& o) {
   return report.all_ok() && references_agree && reports == kExitOk ? kExitOk : kExitFailed;
 }
 
+int sweep_command(const SweepOptions& o) {
+  if (o.run_job >= 0) return sweep_task_command(o);
+  Grid grid;
+  try {
+    grid = load_grid(o.grid);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  return sweep_of(o, grid);
+}
+
 }  // namespace
+
+int sweep_grid(const Grid& grid, const std::string& out, const std::string& reuse_from, int jobs) {
+  SweepOptions o;
+  o.out = out;
+  o.out_given = true;
+  o.reuse_datasets = reuse_from;
+  o.jobs = jobs;
+  return sweep_of(o, grid);
+}
 
 Command add_sweep_command(CLI::App& parent) {
   auto o = std::make_shared<SweepOptions>();

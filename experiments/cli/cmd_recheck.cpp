@@ -1,0 +1,131 @@
+// `rapid recheck SWEEP_DIR --seeds A-B [--out DIR]`: the sweep's grid again on seeds it did not
+// use, from its reference agents and datasets, and which of its claims' verdicts held
+// (docs/decisions.md §Rechecks). The recheck is an ordinary sweep folder: resumable, summarised,
+// and its recheck.md sets its verdicts beside the original's.
+#include <filesystem>
+#include <iostream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "core/atomic_file.hpp"
+#include "experiments/cli/commands.hpp"
+#include "experiments/cli/errors.hpp"
+#include "experiments/report/summarize.hpp"
+#include "experiments/sweep/grid.hpp"
+#include "experiments/sweep/state.hpp"
+
+namespace rapid {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RecheckOptions {
+  std::string sweep, seeds, out;
+  int jobs = 0;
+};
+
+// "100-109" or "100,105,107": the seeds, each at most once; throws UsageError naming --seeds.
+std::vector<int> parse_seeds(const std::string& text) {
+  static const std::regex range(R"(([0-9]{1,9})-([0-9]{1,9}))"), list(R"([0-9]{1,9}(,[0-9]{1,9})*)");
+  std::smatch m;
+  std::vector<int> seeds;
+  if (std::regex_match(text, m, range)) {
+    const int a = std::stoi(m[1].str()), b = std::stoi(m[2].str());
+    if (a > b || b - a >= 1000) throw UsageError("--seeds: '" + text + "' must be A-B with A ≤ B and at most 1,000 seeds");
+    for (int s = a; s <= b; ++s) seeds.push_back(s);
+  } else if (std::regex_match(text, list)) {
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, ',');) seeds.push_back(std::stoi(item));
+    if (std::set<int>(seeds.begin(), seeds.end()).size() != seeds.size())
+      throw UsageError("--seeds: '" + text + "' names a seed twice");
+  } else {
+    throw UsageError("--seeds: expected A-B or a comma-separated list of seeds, got '" + text + "'");
+  }
+  return seeds;
+}
+
+// The verdict each claim got: the decided one where the summary has a decision rule, else the
+// point-mean one.
+std::map<std::string, std::string> verdicts(const Summary& s) {
+  std::map<std::string, std::string> out;
+  if (s.decisions)
+    for (const DecidedClaim& c : s.decisions->claims) out[c.id] = c.verdict;
+  else
+    for (const ClaimResult& c : s.claims) out[c.id] = c.verdict;
+  return out;
+}
+
+std::string seeds_text(const std::vector<std::uint64_t>& seeds) {
+  std::string t;
+  for (std::uint64_t s : seeds) t += (t.empty() ? "" : ", ") + std::to_string(s);
+  return t;
+}
+
+std::string recheck_markdown(const Summary& original, const Summary& recheck) {
+  const auto before = verdicts(original), after = verdicts(recheck);
+  std::ostringstream out;
+  out << "# Recheck of `" << original.grid.name << "`\n\n"
+      << "The same grid, references and datasets on seeds the original did not use (original: "
+      << seeds_text(original.grid.seeds) << "; recheck: " << seeds_text(recheck.grid.seeds) << "). "
+      << (recheck.decisions ? "Verdicts are decided (docs/decisions.md): a claim held when the recheck decides it the "
+                              "same way; an UNDECIDED recheck neither confirms nor contradicts a decided original."
+                            : "Verdicts are point-mean checks (no decision rule for this profile).")
+      << " Each sweep's own claims.md has the comparisons.\n\n| Claim | Original | Recheck | Held |\n|---|---|---|---|\n";
+  for (const auto& [id, v] : before) {
+    const std::string w = after.count(id) ? after.at(id) : "—";
+    const bool decided = [](const std::string& x) { return x != "UNDECIDED" && x != "N/A" && x != "—"; }(v);
+    const bool decided_again = w != "UNDECIDED" && w != "N/A" && w != "—";
+    const std::string held = !decided || !decided_again ? "not decided" : (v == w ? "yes" : "no");
+    out << "| " << id << " | " << v << " | " << w << " | " << held << " |\n";
+  }
+  return out.str();
+}
+
+int recheck_command(const RecheckOptions& o) {
+  SweepFolder original;
+  try {
+    original = open_sweep_folder(o.sweep);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("SWEEP_DIR: " + std::string(e.what()));
+  }
+  const std::vector<int> seeds = parse_seeds(o.seeds);
+  for (int s : seeds)
+    if (std::find(original.grid.seeds.begin(), original.grid.seeds.end(), static_cast<std::uint64_t>(s)) !=
+        original.grid.seeds.end())
+      throw UsageError("--seeds: seed " + std::to_string(s) + " is one of the sweep's own seeds; a recheck needs new ones");
+  nlohmann::json doc = original.grid.normalized;
+  doc["seeds"] = seeds;
+  doc["name"] = original.grid.name + "-recheck";
+  Grid grid;
+  try {
+    grid = parse_grid(doc, o.sweep + " with --seeds " + o.seeds);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  fs::path sweep_path = fs::path(o.sweep).lexically_normal();
+  if (sweep_path.filename().empty()) sweep_path = sweep_path.parent_path();  // "runs/x/" names runs/x
+  const fs::path out = o.out.empty() ? fs::path(sweep_path.string() + "-recheck") : fs::path(o.out);
+  const int code = sweep_grid(grid, out.string(), o.sweep, o.jobs);
+  if (code != kExitOk && code != kExitFailed) return code;  // interrupted: no comparison
+  const std::string text = recheck_markdown(build_summary(original.dir), build_summary(out));
+  write_file_atomic((out / "recheck.md").string(), text);
+  std::cout << text;
+  return code;
+}
+
+}  // namespace
+
+Command add_recheck_command(CLI::App& parent) {
+  auto o = std::make_shared<RecheckOptions>();
+  CLI::App* sub = parent.add_subcommand(
+      "recheck", "Rerun a sweep's grid on new seeds from its references and datasets and say which verdicts held");
+  sub->add_option("SWEEP_DIR", o->sweep, "a finished (or partial) sweep folder")->required();
+  sub->add_option("--seeds", o->seeds, "the new seeds: A-B or a comma-separated list (none of the sweep's)")->required();
+  sub->add_option("--out", o->out, "the recheck's sweep folder (default: SWEEP_DIR-recheck)");
+  sub->add_option("--jobs,-j", o->jobs, "worker processes (default: the number of cores)")->check(CLI::Range(1, 1024));
+  return {sub, [o] { return recheck_command(*o); }};
+}
+
+}  // namespace rapid
