@@ -45,11 +45,14 @@ std::string expected_cell_hash(const SweepFolder& folder, const SweepJob& cell) 
   return job_config_hash(spec);
 }
 
+// The scenario's own reference settings, not the grid's whole "reference" object: another
+// scenario's L changes nothing here, so grids that differ only there share references and datasets.
 std::string dataset_stage_inputs_hash(const SweepFolder& folder, const SweepJob& job) {
+  const ReferenceSettings r = reference_for(folder.grid, job.scenario);
   const nlohmann::json inputs = {
       {"scenario", job.scenario},
       {"config", cell_config(folder.grid, job.scenario, job.axis)},
-      {"reference", folder.grid.normalized.at("reference")},
+      {"reference", {{"seed", r.seed}, {"transitions", r.transitions}, {"noise_std", r.noise_std}, {"steps", r.steps}}},
   };
   return fnv1a_hex(inputs.dump());
 }

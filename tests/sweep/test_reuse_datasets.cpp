@@ -117,6 +117,26 @@ TEST_F(ReuseDatasets, AFolderOfReferencesAloneGivesItsAgentsAndTheDatasetsAreCol
   EXPECT_NE(alone.output.find("--check-references: needs --reuse-datasets FROM"), std::string::npos) << alone.output;
 }
 
+// A scenario's references and datasets answer to its own reference settings: another scenario's
+// L does not make them stale (quick-flow and paper-flow share theirs; so does a one-scenario grid).
+TEST(DatasetStageInputs, AreTheScenariosOwnReferenceSettings) {
+  nlohmann::json a = pendulum_grid("a", {"rapid-rl", "ddpg"}, {0}, 600);
+  a["scenarios"] = {"pendulum", "merge"};
+  a["reference"]["steps"] = {{"pendulum", 1200}, {"merge", 1200}};
+  nlohmann::json b = a;
+  b["reference"]["steps"]["merge"] = 2400;
+  const SweepFolder fa = make_sweep_folder("/nonexistent/a", parse_grid(a, "a.json"));
+  const SweepFolder fb = make_sweep_folder("/nonexistent/b", parse_grid(b, "b.json"));
+  int compared = 0;
+  for (const SweepJob& job : fa.graph.jobs) {
+    if (job.kind == JobKind::kCell) continue;
+    const bool same = dataset_stage_inputs_hash(fa, job) == dataset_stage_inputs_hash(fb, job);
+    EXPECT_EQ(same, job.scenario == "pendulum") << job.id();
+    ++compared;
+  }
+  EXPECT_EQ(compared, 4);  // a reference and a dataset job per scenario
+}
+
 TEST_F(ReuseDatasets, AFolderThatIsNotASweepIsRefusedInOneLine) {
   fs::create_directories(dir.path() / "plain");
   const Result r = run_rapid("sweep " + grid_path.string() + " --jobs 1 --no-summary --out " + sweep.string() +
