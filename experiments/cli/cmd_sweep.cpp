@@ -13,6 +13,7 @@
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
 #include "experiments/cli/output_folder.hpp"
+#include "experiments/cli/sweep_decide.hpp"
 #include "experiments/sweep/grid.hpp"
 #include "experiments/sweep/local_backend.hpp"
 #include "experiments/sweep/lock.hpp"
@@ -40,6 +41,8 @@ struct SweepOptions {
   std::string job_timeout;  // local: e.g. 90s, 45m, 2h; empty: no limit
   std::string reuse_datasets;  // another sweep folder whose references and datasets to start from
   bool check_references = false;  // train the references instead, and check them against that folder's
+  bool decide = false;            // adaptive seeds (cli/sweep_decide.hpp)
+  DecideSettings decide_settings;
   // --backend slurm (sweep/slurm_backend.hpp)
   SlurmOptions slurm;
   bool dry_run = false;
@@ -235,6 +238,14 @@ int sweep_of(const SweepOptions& o, const Grid& grid) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  if (o.decide) {
+    if (o.backend == "slurm")
+      throw UsageError("--decide: for the local backend for now (it looks at the records between blocks of seeds)");
+    if (o.decide_settings.max_seeds < static_cast<int>(grid.seeds.size()))
+      throw UsageError("--max-seeds: " + std::to_string(o.decide_settings.max_seeds) + " is below the grid's " +
+                       std::to_string(grid.seeds.size()) + " seeds");
+    if (!o.only.empty()) throw UsageError("--decide: decides the whole grid; it does not combine with --only");
+  }
   if (o.backend == "slurm") {
     if (o.check_references)
       throw UsageError("--check-references: for the local backend, which waits for the references it compares");
@@ -255,6 +266,7 @@ int sweep_of(const SweepOptions& o, const Grid& grid) {
   const auto lock = lock_folder(dir);
   update_grid_file(folder, std::cerr);
   if (!o.check_references) reuse_datasets_from(source, folder);
+  if (o.decide) start_decide(dir, grid, o.decide_settings);
 
   std::cerr << "rapid sweep: " << grid.name << " → " << dir.string() << " (" << options.workers << " worker"
             << (options.workers == 1 ? "" : "s") << (o.only.empty() ? "" : ", only " + o.only)
@@ -274,6 +286,8 @@ int sweep_of(const SweepOptions& o, const Grid& grid) {
     if (j.state == "failed" || j.state == "diverged" || j.state == "blocked")
       std::cout << "  " << j.state << " " << j.id << ": " << j.error << "\n";
   if (report.interrupted_by) return kExitInterrupted;
+  if (o.decide && report.all_ok() && !run_decide_looks(dir, grid, options, o.decide_settings, std::cerr))
+    return kExitInterrupted;
   const bool references_agree = !o.check_references || check_references_against(folder, *source);
   // Refresh the reports from whatever records exist (a partial sweep or an --only rerun too). A
   // signal meanwhile is an interrupted sweep (130); reports that fail make it a failed one.
@@ -318,6 +332,13 @@ Command add_sweep_command(CLI::App& parent) {
   sub->add_flag("--check-references", o->check_references,
                 "with --reuse-datasets FROM: train the reference agents here instead of copying them, then check that "
                 "their checkpoints are byte-identical to FROM's (exit 1 naming any that differ)");
+  sub->add_flag("--decide", o->decide,
+                "adaptive seeds: then add blocks of seeds to the cells of undecided comparisons until every claim is "
+                "decided or --max-seeds (docs/decisions.md)");
+  sub->add_option("--max-seeds", o->decide_settings.max_seeds, "with --decide: seeds a cell may reach (default 30)")
+      ->check(CLI::Range(2, 1000));
+  sub->add_option("--block", o->decide_settings.block, "with --decide: seeds added per look (default 5)")
+      ->check(CLI::Range(1, 1000));
   sub->add_flag("--no-summary", o->no_summary, "do not refresh the reports (rapid summarize) at the end");
   sub->add_flag("--no-animations", o->no_animations, "refresh the reports without the animations");
   sub->add_option("--backend", o->backend, "where jobs run: local (this machine) or slurm (submit job arrays)");

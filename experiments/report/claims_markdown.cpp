@@ -63,8 +63,11 @@ std::string decided_intro(const Decisions& d) {
   std::ostringstream out;
   out << "Verdicts are decided (docs/decisions.md): each claim's comparisons are tested on the per-seed numbers "
          "(Welch's t test for a difference, TOST for equivalence within ±δ), "
-      << d.family_size << " hypotheses under Holm's procedure at a family-wise error of α = " << d.settings.alpha
-      << ". δ:";
+      << d.family_size << " hypotheses under Holm's procedure at a family-wise error of α = " << d.settings.alpha;
+  if (d.settings.looks > 1)
+    out << " over at most " << d.settings.looks << " looks of adaptive seeds (`--decide`): each look decides at α/"
+        << d.settings.looks << " = " << d.settings.alpha_per_look() << "; each cell's seeds are in table.md's (n=…)";
+  out << ". δ:";
   for (const auto& [scenario, delta] : d.settings.delta) out << " " << scenario << " " << short_number(delta) << ";";
   out << " " << d.settings.delta_rule << ". CONFIRMED: the claim holds even if every undecided comparison went "
       << "against it; REFUTED: it fails even if every undecided comparison went for it; UNDECIDED otherwise. "

@@ -151,7 +151,10 @@ class Builder {
       cmp.y = "online";
       cmp.paired = true;
       cmp.wanted = wanted;
-      if (cell) std::tie(cmp.xs, cmp.ys) = seed_bc_means(*cell, from, to);
+      if (cell) {
+        std::tie(cmp.xs, cmp.ys) = seed_bc_means(*cell, from, to);
+        cmp.cells.push_back(cell->key());
+      }
       g.comparisons.push_back(add(std::move(cmp)));
     };
     const auto range = [&](const std::string& dataset) -> std::pair<double, double> {
@@ -196,6 +199,8 @@ class Builder {
     c.x = std::move(x);
     c.y = std::move(y);
     c.delta = delta;
+    for (const CellSummary* cell : {cx, cy})
+      if (cell) c.cells.push_back(cell->key());
     if (cx) c.xs = values(*cx);
     if (cy) c.ys = values(*cy);
     return c;
@@ -219,7 +224,7 @@ class Builder {
       }
     }
     out_.family_size = static_cast<int>(p.size());
-    const std::vector<bool> rejected = holm_rejections(p, settings_.alpha);
+    const std::vector<bool> rejected = holm_rejections(p, settings_.alpha_per_look());
     for (std::size_t k = 0; k < p.size(); ++k) {
       if (!rejected[k]) continue;
       Comparison& c = out_.comparisons[owner[k].first];
@@ -233,7 +238,8 @@ class Builder {
       // The spread behind the standard error, per side (paired: of the differences, over √2).
       const double sd = c.paired ? c.d.se * std::sqrt(static_cast<double>(c.xs.size())) / std::sqrt(2.0)
                                  : c.d.se / std::sqrt(1.0 / c.xs.size() + 1.0 / c.ys.size());
-      c.seeds_needed = seeds_needed(sd, effect, settings_.alpha / std::max(1, out_.family_size), settings_.power);
+      c.seeds_needed =
+          seeds_needed(sd, effect, settings_.alpha_per_look() / std::max(1, out_.family_size), settings_.power);
     }
   }
 

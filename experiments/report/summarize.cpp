@@ -276,7 +276,13 @@ Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptio
   }
   if (options.claims) {
     s.claims = check_claims(s);
-    if (const auto settings = load_decision_settings(s.grid.profile)) s.decisions = decide_claims(s, *settings);
+    if (auto settings = load_decision_settings(s.grid.profile)) {
+      // A folder that `rapid sweep --decide` has looked at decides at α / (its largest number of looks).
+      if (const auto plan = read_json_file(folder.path(sweep_files::kDecide));
+          plan && plan->contains("looks_max") && (*plan)["looks_max"].is_number_integer() && (*plan)["looks_max"] > 0)
+        settings->looks = (*plan)["looks_max"].get<int>();
+      s.decisions = decide_claims(s, *settings);
+    }
   }
   return s;
 }

@@ -145,6 +145,9 @@ struct DecisionSettings {
   double power = 0.8;
   std::map<std::string, double> delta;  // per scenario, in return units
   std::string delta_rule;               // how δ was chosen, in words
+  // Looks of an adaptive (--decide) sweep: each decides at alpha / looks (docs/decisions.md).
+  int looks = 1;
+  double alpha_per_look() const { return alpha / looks; }
 };
 
 enum class ComparisonOutcome { kXBetter, kYBetter, kEquivalent, kUndecided };
@@ -158,6 +161,7 @@ struct Comparison {
   bool paired = false;
   std::optional<double> delta;  // the equivalence margin; none: no equivalence test
   std::vector<double> xs, ys;
+  std::vector<std::string> cells;  // the table cells behind xs and ys (CellSummary::key())
   MeanDifference d;
   double p_difference = 0.0, p_equivalence = 0.0;  // NaN where not computed
   ComparisonOutcome outcome = ComparisonOutcome::kUndecided;

@@ -66,6 +66,7 @@ nlohmann::json decisions_json(const Decisions& d) {
                            {"delta", json_number(c.delta)},
                            {"n_x", c.xs.size()},
                            {"n_y", c.ys.size()},
+                           {"cells", c.cells},
                            {"difference", json_number(c.d.diff)},
                            {"se", json_number(c.d.se)},
                            {"df", json_number(c.d.df)},
@@ -78,6 +79,8 @@ nlohmann::json decisions_json(const Decisions& d) {
   for (const DecidedClaim& c : d.claims)
     claims.push_back({{"id", c.id}, {"verdict", c.verdict}, {"reason", c.reason}, {"comparisons", c.comparisons}});
   return {{"alpha", d.settings.alpha},
+          {"looks", d.settings.looks},
+          {"alpha_per_look", d.settings.alpha_per_look()},
           {"power", d.settings.power},
           {"delta", d.settings.delta},
           {"delta_rule", d.settings.delta_rule},

@@ -38,6 +38,7 @@ inline constexpr const char* kJobs = "jobs";
 inline constexpr const char* kLog = "log.txt";
 inline constexpr const char* kOutcome = "outcome.json";  // written by the runner after each attempt
 inline constexpr const char* kNoDataset = "none";  // the dataset folder of ddpg cells
+inline constexpr const char* kDecide = "decide.json";  // `rapid sweep --decide`'s looks (docs/decisions.md)
 }  // namespace sweep_files
 
 enum class JobKind {
