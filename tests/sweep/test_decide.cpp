@@ -1,0 +1,56 @@
+// `rapid sweep GRID --decide`: blocks of seeds go only to the cells of undecided comparisons, the
+// looks are recorded in decide.json, every summary of the folder decides at alpha / K, and the same
+// command again runs nothing new (the looks are a function of the records).
+#include <gtest/gtest.h>
+
+#include "tests/datasets/dataset_fixtures.hpp"
+#include "tests/sweep/sweep_test_util.hpp"
+
+namespace rapid {
+namespace {
+
+using namespace sweep_test;
+
+TEST(Decide, AddsBlocksOfSeedsToUndecidedCellsAndResumesWithoutRerunning) {
+  testing::ScratchDir dir;
+  const fs::path grid = dir.path() / "g.json", sweep = dir.path() / "sweep";
+  nlohmann::json g = pendulum_grid("g", {"rapid-rl", "ddpg"}, {0, 1}, 400);
+  g["profile"] = "short";
+  write_json(grid, g);
+  const std::string cmd = "sweep " + grid.string() + " --jobs 2 --no-animations --decide --max-seeds 4 --block 1 --out " +
+                          sweep.string();
+  const Result r = run_rapid(cmd);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json plan = read_json(sweep / "decide.json");
+  EXPECT_EQ(plan["looks_max"], 3);  // seeds 0-1, then 2, then 3
+  EXPECT_EQ(plan["initial_seeds"], nlohmann::json({0, 1}));
+  ASSERT_GE(plan["looks"].size(), 1u);
+  ASSERT_TRUE(plan.contains("stopped")) << plan.dump();
+  // With 400-step runs on two seeds nothing is decided: the looks go on to the maximum, each
+  // adding one seed to the cells of undecided comparisons (here RAPID-RL's and DDPG's).
+  ASSERT_TRUE(plan["looks"][0].contains("added_seeds")) << plan.dump();
+  EXPECT_EQ(plan["looks"][0]["added_seeds"], nlohmann::json({2}));
+  EXPECT_EQ(plan["looks"][0]["cells"], nlohmann::json({"pendulum/initial/rapid-rl", "pendulum/none/ddpg"}));
+  EXPECT_TRUE(fs::exists(sweep / "jobs/pendulum/none/ddpg/seed3/record.json"));
+  EXPECT_EQ(read_json(sweep / "grid.json")["seeds"], nlohmann::json({0, 1, 2, 3}));
+  const nlohmann::json summary = read_json(sweep / "summary.json");
+  EXPECT_EQ(summary["decisions"]["looks"], 3);
+  EXPECT_DOUBLE_EQ(summary["decisions"]["alpha_per_look"].get<double>(), 0.05 / 3);
+
+  // Again: the same looks from the same records, no job run.
+  const Result again = run_rapid(cmd);
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_TRUE(jobs_ran(sweep).empty());
+  EXPECT_EQ(read_json(sweep / "decide.json")["looks"], plan["looks"]);
+
+  g["seeds"] = {0, 1, 2};
+  write_json(dir.path() / "three.json", g);
+  const Result bad = run_rapid("sweep " + (dir.path() / "three.json").string() + " --decide --max-seeds 2 --out " +
+                               (dir.path() / "x").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.output.find("--max-seeds: 2 is below the grid's 3 seeds"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(dir.path() / "x"));
+}
+
+}  // namespace
+}  // namespace rapid
