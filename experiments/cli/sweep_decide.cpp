@@ -93,7 +93,8 @@ bool run_decide_looks(const fs::path& sweep_dir, Grid grid, const LocalSweepOpti
     }
     // The next block: the seeds after every seed the grid has, for the growing cells only.
     std::vector<std::uint64_t> block;
-    for (int k = 1; k <= settings.block; ++k) block.push_back(grid.seeds.back() + static_cast<std::uint64_t>(k));
+    const std::uint64_t largest = *std::max_element(grid.seeds.begin(), grid.seeds.end());
+    for (int k = 1; k <= settings.block; ++k) block.push_back(largest + static_cast<std::uint64_t>(k));
     nlohmann::json doc = grid.normalized;
     std::vector<std::uint64_t> seeds = grid.seeds;
     seeds.insert(seeds.end(), block.begin(), block.end());
