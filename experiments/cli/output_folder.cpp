@@ -26,12 +26,12 @@ void make_output_folder(const fs::path& dir, const std::string& option) {
     throw UsageError(option + ": cannot write into " + quoted + ": " + std::strerror(errno));
 }
 
-void refuse_foreign_folder(const fs::path& dir, const std::string& option, const std::vector<std::string>& markers,
+void refuse_foreign_folder(const fs::path& dir, const std::string& option, const std::vector<FolderMarker>& markers,
                            const std::string& what, bool force) {
   std::error_code ec;
   if (force || !fs::is_directory(dir, ec) || fs::is_empty(dir, ec)) return;
-  for (const std::string& m : markers)
-    if (fs::exists(dir / m, ec)) return;
+  for (const FolderMarker& m : markers)
+    if (fs::exists(dir / m.file, ec) && (!m.accepts || m.accepts((dir / m.file).string()))) return;
   throw UsageError(option + ": '" + dir.string() + "' holds files but is not " + what +
                    "; name a new or empty folder, or add --force to write into it anyway");
 }

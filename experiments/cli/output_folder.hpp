@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -14,10 +15,20 @@ namespace rapid {
 // (a read-only mount, no permission, a name too long for the file system, a symlink loop).
 void make_output_folder(const std::filesystem::path& dir, const std::string& option);
 
+// A file whose presence says rapid wrote the folder: its name and, where a user's file could have
+// that name too, a check of its contents.
+struct FolderMarker {
+  FolderMarker(const char* file) : file(file) {}  // implicit: a bare name is the common case
+  FolderMarker(std::string file, std::function<bool(const std::string& path)> accepts)
+      : file(std::move(file)), accepts(std::move(accepts)) {}
+  std::string file;
+  std::function<bool(const std::string& path)> accepts;  // empty: being there is enough
+};
+
 // Refuses (UsageError "OPTION: …") an existing folder that holds files but none of `markers`:
 // a folder of the user's own, whose table.md or grid.json rapid would overwrite. `what` names
 // the kind of folder rapid writes ("a sweep folder"). With `force` it only returns.
 void refuse_foreign_folder(const std::filesystem::path& dir, const std::string& option,
-                           const std::vector<std::string>& markers, const std::string& what, bool force);
+                           const std::vector<FolderMarker>& markers, const std::string& what, bool force);
 
 }  // namespace rapid
