@@ -8,8 +8,14 @@
 
 namespace rapid {
 
-// Throws std::runtime_error naming the path on any failure; the target is then untouched.
+// Throws std::runtime_error naming the path on any failure; the target is then untouched. A
+// target that is not a regular file (not_a_regular_file) is refused, not replaced: the rename
+// would delete a symlink, a FIFO or a device node that the user made.
 void write_file_atomic(const std::string& path, std::string_view content);
+
+// What is at `path` (not following a symlink) when it is not a regular file: "a symlink",
+// "a folder", "a FIFO", "a device", "a socket". Empty when nothing is there or a regular file is.
+std::string not_a_regular_file(const std::string& path);
 
 // Removes the temporaries that writers killed mid-write left beside these files:
 // "<path>.tmp.<pid>" (write_file_atomic) and "<path>.tmp.<pid>.<n>" (write_dataset). Returns how

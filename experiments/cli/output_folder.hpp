@@ -1,6 +1,7 @@
-// The folder an option names for a command's output (`rapid run --out`, `rapid sweep --out`,
-// `rapid summarize --out`, `rapid dataset build --dir`). A folder that cannot be made or written
-// is bad input: exit 2 with one line naming the option, not a filesystem error after the work.
+// The folder or file an option names for a command's output (`rapid run --out`, `rapid sweep
+// --out`, `rapid summarize --out`, `rapid dataset build --dir`, `rapid rollout --record`, …). An
+// output that cannot be made or written is bad input: exit 2 with one line naming the option,
+// not a filesystem error after the work.
 #pragma once
 
 #include <filesystem>
@@ -14,6 +15,13 @@ namespace rapid {
 // UsageError "OPTION: …" when `dir` is empty, is a file, cannot be created or is not writable
 // (a read-only mount, no permission, a name too long for the file system, a symlink loop).
 void make_output_folder(const std::filesystem::path& dir, const std::string& option);
+
+// The file an option names for a command's output (`rapid rollout --record`, `rapid diff
+// --write-baseline`, `rapid bench --json`), checked before the work: throws UsageError
+// "OPTION: …" when `path` is empty, is a folder or anything else but a regular file (a symlink,
+// FIFO or device would be replaced, not written through), or lies in a folder that does not exist
+// or cannot be written. Nothing is created on the user's behalf.
+void check_output_file(const std::string& option, const std::string& path);
 
 // A file whose presence says rapid wrote the folder: its name and, where a user's file could have
 // that name too, a check of its contents.
