@@ -45,10 +45,10 @@ std::string not_a_regular_file(const std::string& path) {
 
 void write_file_atomic(const std::string& path, std::string_view content) {
   if (const std::string kind = not_a_regular_file(path); !kind.empty())
-    throw std::runtime_error("cannot write " + path + ": it is " + kind + ", not a regular file");
+    throw FileWriteError(path, "it is " + kind + ", not a regular file");
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+  if (fd < 0) throw FileWriteError(path, std::strerror(errno));
   const char* p = content.data();
   std::size_t left = content.size();
   while (left > 0) {
@@ -58,19 +58,23 @@ void write_file_atomic(const std::string& path, std::string_view content) {
       const std::string err = std::strerror(errno);
       ::close(fd);
       ::unlink(tmp.c_str());
-      throw std::runtime_error("cannot write " + path + ": " + err);
+      throw FileWriteError(path, err);
     }
     p += n;
     left -= static_cast<std::size_t>(n);
   }
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
+  // A full disk may only show here, when the data reaches it.
+  const bool synced = ::fsync(fd) == 0;
+  const std::string sync_error = synced ? "" : std::strerror(errno);
+  if (::close(fd) != 0 || !synced) {
+    const std::string err = synced ? std::strerror(errno) : sync_error;
     ::unlink(tmp.c_str());
-    throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+    throw FileWriteError(path, err);
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {
     const std::string err = std::strerror(errno);
     ::unlink(tmp.c_str());
-    throw std::runtime_error("cannot write " + path + ": " + err);
+    throw FileWriteError(path, err);
   }
 }
 
