@@ -1,6 +1,7 @@
 #include "core/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -32,10 +33,22 @@ int remove_leftover_temporaries(const std::vector<std::string>& paths) {
   return removed;
 }
 
+std::string not_a_regular_file(const std::string& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return "";
+  if (S_ISLNK(st.st_mode)) return "a symlink";
+  if (S_ISDIR(st.st_mode)) return "a folder";
+  if (S_ISFIFO(st.st_mode)) return "a FIFO";
+  if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) return "a device";
+  return "a socket";
+}
+
 void write_file_atomic(const std::string& path, std::string_view content) {
+  if (const std::string kind = not_a_regular_file(path); !kind.empty())
+    throw FileWriteError(path, "it is " + kind + ", not a regular file");
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+  if (fd < 0) throw FileWriteError(path, std::strerror(errno));
   const char* p = content.data();
   std::size_t left = content.size();
   while (left > 0) {
@@ -45,19 +58,23 @@ void write_file_atomic(const std::string& path, std::string_view content) {
       const std::string err = std::strerror(errno);
       ::close(fd);
       ::unlink(tmp.c_str());
-      throw std::runtime_error("cannot write " + path + ": " + err);
+      throw FileWriteError(path, err);
     }
     p += n;
     left -= static_cast<std::size_t>(n);
   }
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
+  // A full disk may only show here, when the data reaches it.
+  const bool synced = ::fsync(fd) == 0;
+  const std::string sync_error = synced ? "" : std::strerror(errno);
+  if (::close(fd) != 0 || !synced) {
+    const std::string err = synced ? std::strerror(errno) : sync_error;
     ::unlink(tmp.c_str());
-    throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+    throw FileWriteError(path, err);
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {
     const std::string err = std::strerror(errno);
     ::unlink(tmp.c_str());
-    throw std::runtime_error("cannot write " + path + ": " + err);
+    throw FileWriteError(path, err);
   }
 }
 

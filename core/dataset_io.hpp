@@ -25,8 +25,9 @@ struct DatasetExpectation {
   std::string scenario;
 };
 
-// Writes atomically: a temporary file beside `path` is written, flushed to disk and renamed over
-// `path`, so a killed writer never leaves a partial file there. Refuses (DatasetError) an empty
+// Writes atomically: the file is made in memory, then written to a temporary file beside `path`,
+// flushed to disk and renamed over `path` (write_file_atomic), so a killed writer never leaves a
+// partial file there and a full disk is an error, with the temporary removed. Refuses (DatasetError) an empty
 // dataset or one holding NaN/inf, which read_dataset would reject. Throws DatasetError naming
 // the path on any I/O failure; the target is then untouched.
 void write_dataset(const std::string& path, const Dataset& dataset);

@@ -1,15 +1,9 @@
-// write_dataset: D4RL-layout HDF5, written to a temporary file and renamed into place.
-#include <fcntl.h>
-#include <unistd.h>
-
+// write_dataset: D4RL-layout HDF5, made in memory and written with write_file_atomic.
 #include <algorithm>
-#include <atomic>
-#include <cerrno>
 #include <cstdint>
-#include <cstdio>
-#include <cstring>
 #include <vector>
 
+#include "core/atomic_file.hpp"
 #include "core/dataset_hdf5_util.hpp"
 #include "core/dataset_io.hpp"
 
@@ -60,8 +54,19 @@ void write_string_attribute(H5::H5File& file, const std::string& name, const std
   attr.write(type, value);
 }
 
-void write_hdf5(const std::string& file_path, const Dataset& d) {
-  H5::H5File file(file_path, H5F_ACC_TRUNC);
+// How much the in-memory file grows at a time.
+constexpr std::size_t kImageIncrement = 1 << 20;
+
+// The whole HDF5 file, made in memory (the core driver without a backing store): HDF5 never
+// writes to disk, so a full disk is one failed write() in write_file_atomic rather than an error
+// inside HDF5, whose clean-up after a close that could not flush crashes (HDF5 1.10: H5Fclose
+// after a failed H5Dclose, SIGSEGV). The bytes are those HDF5 writes to a file itself.
+std::string hdf5_image(const Dataset& d) {
+  H5::FileAccPropList in_memory;
+  H5Pset_fapl_core(in_memory.getId(), kImageIncrement, /*backing_store=*/false);
+  // HDF5 first tries to open the name as an existing file; under /dev/null none can exist, so
+  // nothing on disk is touched.
+  H5::H5File file("/dev/null/rapid-in-memory.h5", H5F_ACC_TRUNC, H5::FileCreatPropList::DEFAULT, in_memory);
   const hsize_t n = d.size();
   write_floats(file, h5::kObservations, d.observations.data(), n, d.obs_dim());
   write_floats(file, h5::kActions, d.actions.data(), n, d.act_dim());
@@ -70,25 +75,13 @@ void write_hdf5(const std::string& file_path, const Dataset& d) {
   write_flags(file, h5::kTerminals, d.terminals);
   write_flags(file, h5::kTimeouts, d.timeouts);
   for (const auto& [name, value] : d.metadata) write_string_attribute(file, name, value);
+  file.flush(H5F_SCOPE_GLOBAL);
+  const ssize_t size = H5Fget_file_image(file.getId(), nullptr, 0);
+  std::string image(size > 0 ? static_cast<std::size_t>(size) : 0, '\0');
+  if (size <= 0 || H5Fget_file_image(file.getId(), image.data(), image.size()) != size)
+    throw H5::FileIException("H5Fget_file_image", "cannot take the file's image");
   file.close();
-}
-
-// Unique per process and per call, in the target's directory so the rename stays on one
-// filesystem (and is therefore atomic).
-std::string temporary_path_beside(const std::string& path) {
-  static std::atomic<unsigned> counter{0};
-  return path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
-}
-
-// HDF5 closes the file without fsync; without it a crash after the rename could leave the target
-// name pointing at unwritten blocks.
-void flush_to_disk(const std::string& file_path) {
-  const int fd = ::open(file_path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw DatasetError(std::strerror(errno));
-  const bool synced = ::fsync(fd) == 0;
-  const int sync_errno = errno;
-  ::close(fd);
-  if (!synced) throw DatasetError(std::strerror(sync_errno));
+  return image;
 }
 
 void refuse_non_finite(const std::string& path, const char* key, std::optional<std::size_t> row) {
@@ -108,17 +101,16 @@ void write_dataset(const std::string& path, const Dataset& dataset) {
   refuse_non_finite(path, h5::kNextObservations, h5::first_non_finite(dataset.next_observations));
 
   H5::Exception::dontPrint();  // errors become exceptions with our message, not stderr dumps
-  const std::string tmp = temporary_path_beside(path);
+  std::string image;
   try {
-    write_hdf5(tmp, dataset);
-    flush_to_disk(tmp);
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) throw DatasetError(std::strerror(errno));
+    image = hdf5_image(dataset);
   } catch (const H5::Exception& e) {
-    std::remove(tmp.c_str());
     throw DatasetError("cannot write dataset " + path + ": " + h5::error_stack_detail(e.getDetailMsg()));
-  } catch (const DatasetError& e) {
-    std::remove(tmp.c_str());
-    throw DatasetError("cannot write dataset " + path + ": " + e.what());
+  }
+  try {
+    write_file_atomic(path, image);
+  } catch (const FileWriteError& e) {
+    throw DatasetError("cannot write dataset " + path + ": " + e.reason());
   }
 }
 

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "core/atomic_file.hpp"
+#include "tests/special_files.hpp"
 
 using namespace rapid;
 namespace fs = std::filesystem;
@@ -43,4 +44,30 @@ TEST_F(AtomicFile, RemovesOnlyTheTemporariesOfTheNamedFiles) {
     EXPECT_TRUE(fs::exists(file(kept))) << kept;
   // A folder that does not exist yet has nothing to clean.
   EXPECT_EQ(remove_leftover_temporaries({file("nowhere/record.json")}), 0);
+}
+
+// Replacing a file removes the old one: never what is not a regular file (a symlink, which the
+// user's file behind it would lose, a FIFO, a device node, a folder).
+TEST_F(AtomicFile, NeverReplacesWhatIsNotARegularFile) {
+  touch("mine");
+  fs::create_symlink(file("mine"), file("link"));
+  ASSERT_TRUE(test::make_fifo(file("fifo")));
+  fs::create_directories(file("folder"));
+  std::vector<std::string> targets = {"link", "fifo", "folder"};
+  const bool device = test::make_device(file("null"));  // root only
+  if (device) targets.push_back("null");
+  for (const std::string& name : targets) {
+    try {
+      write_file_atomic(file(name), "new");
+      ADD_FAILURE() << name << " was replaced";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("cannot write " + file(name)), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_TRUE(fs::is_symlink(file("link")));
+  EXPECT_EQ(read_file(file("mine")), "x");
+  EXPECT_TRUE(test::is_fifo(file("fifo")));
+  EXPECT_TRUE(fs::is_directory(file("folder")));
+  if (device) EXPECT_TRUE(test::is_device(file("null")));
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 4 + device) << "no temporary left";
 }

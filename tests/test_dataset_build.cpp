@@ -2,7 +2,10 @@
 // datasets with their metadata, and reuse of up-to-date stages.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -175,6 +178,35 @@ TEST(DatasetBuild, ASourceBeforeTheFirstUpdateIsRefused) {
   Mlp::load(ckpt, &updates);
   EXPECT_EQ(updates, 1);
   EXPECT_NE(stale.text.find("training the reference agent"), std::string::npos) << stale.text;
+}
+
+// A disk that fills up while the datasets are written: exit 1 with one line naming the file and
+// no temporary left (HDF5's own error path crashed, SIGSEGV). A file-size limit (RLIMIT_FSIZE,
+// with SIGXFSZ ignored) fails the write as a full disk does, without a disk to fill.
+TEST(DatasetBuild, AWriteThatFailsExitsOneInOneLineAndLeavesNoTemporary) {
+  rapid::testing::ScratchDir dir;
+  write_grid(dir.file("grid.json"), 20000);  // about 700 KB per dataset
+  const std::string cmd = "dataset build --scenario pendulum --grid " + dir.file("grid.json") + " --dir " + dir.file("data");
+  ASSERT_EQ(rapid_cli(cmd + " --reference-only").exit_code, 0);
+  const std::string limited = "trap '' XFSZ; ulimit -f 500; exec '" + std::string(RAPID_BIN) + "' " + cmd + " 2>&1";
+  std::string text;
+  FILE* pipe = ::popen(limited.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  char buf[4096];
+  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, pipe)) > 0;) text.append(buf, n);
+  const int status = ::pclose(pipe);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status) << "\n" << text;
+  EXPECT_EQ(WEXITSTATUS(status), 1) << text;
+  const std::string out = dir.file("data/pendulum");
+  EXPECT_EQ(text.rfind("rapid: failed: cannot write dataset " + out + "/initial.h5: ", 0), 0u) << text;
+  EXPECT_NE(text.find("File too large"), std::string::npos) << text;
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
+  for (const auto& entry : fs::directory_iterator(out)) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_EQ(name.find(".tmp"), std::string::npos) << name;
+    EXPECT_NE(entry.path().extension(), ".h5") << name;
+  }
+  EXPECT_FALSE(fs::exists(out + "/build.json"));
 }
 
 TEST(DatasetBuild, BadInputExitsTwo) {

@@ -1,8 +1,14 @@
 // `rapid run` as a user runs it: records, determinism, divergence and bad input.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "core/atomic_file.hpp"
 #include "core/dataset.hpp"
@@ -92,6 +98,8 @@ TEST(RapidRun, WritesACompleteRecord) {
 TEST(RapidRun, RemovesTheTemporariesAKilledAttemptLeft) {
   rapid::testing::ScratchDir dir;
   std::filesystem::create_directories(dir.file("job"));
+  // A killed attempt leaves its lock file (taken before anything else is written) and temporaries.
+  write_file_atomic(dir.file("job/.rapid-run.lock"), "4242\n");
   for (const char* f : {"record.json.tmp.4242", "actor.ckpt.tmp.4242", "progress.json.tmp.17", "mine.txt.tmp.5"})
     write_file_atomic(dir.file(std::string("job/") + f), "half");
   const auto out = rapid_cli("run " + kShort + "--algo ddpg --seed 3 --out " + dir.file("job"), /*with_stderr=*/true);
@@ -251,6 +259,73 @@ TEST(RapidRun, AnUnusableOutFolderIsBadInput) {
   }
   EXPECT_EQ(read_file(dir.file("a_file")), "mine");
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1) << "nothing else was written";
+}
+
+// `rapid run --out` follows the folder rules of `rapid sweep`: a folder of the user's own is
+// refused (a record.json counts as rapid's only when it is a run record), a folder a run wrote
+// before is rerun into, and --force writes into any folder.
+TEST(RapidRun, AFolderOfTheUsersOwnIsRefusedUnlessForced) {
+  rapid::testing::ScratchDir dir;
+  const auto run = [&](const std::string& folder, const std::string& extra = "") {
+    return rapid_cli("run " + kShort + "--algo ddpg --seed 0 --out " + dir.file(folder) + extra, /*with_stderr=*/true);
+  };
+  std::filesystem::create_directories(dir.file("notes"));
+  write_file_atomic(dir.file("notes/todo.txt"), "mine");
+  std::filesystem::create_directories(dir.file("records"));
+  write_file_atomic(dir.file("records/record.json"), "my own record");
+  std::filesystem::create_directories(dir.file("json"));
+  write_file_atomic(dir.file("json/record.json"), R"({"schema": "mine/1", "status": "ok"})");
+  for (const std::string folder : {"notes", "records", "json"}) {
+    const auto before = std::distance(std::filesystem::directory_iterator(dir.file(folder)), {});
+    const auto r = run(folder);
+    EXPECT_EQ(r.exit_code, 2) << folder << "\n" << r.text;
+    EXPECT_EQ(r.text, "rapid: error: --out: '" + dir.file(folder) +
+                          "' holds files but is not a run folder; name a new or empty folder, or add --force to "
+                          "write into it anyway\n")
+        << folder;
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.file(folder)), {}), before) << "nothing written";
+  }
+  EXPECT_EQ(read_file(dir.file("records/record.json")), "my own record");
+  EXPECT_EQ(read_file(dir.file("json/record.json")), R"({"schema": "mine/1", "status": "ok"})");
+
+  // A rerun into a folder that holds a run record goes ahead, as does --force.
+  ASSERT_EQ(run("job").exit_code, 0);
+  write_file_atomic(dir.file("job/notes.txt"), "mine too");
+  const auto again = run("job");
+  EXPECT_EQ(again.exit_code, 0) << again.text;
+  const auto forced = run("records", " --force");
+  EXPECT_EQ(forced.exit_code, 0) << forced.text;
+  EXPECT_EQ(read_record(dir.file("records"))["schema"], "rapid.run/1");
+}
+
+// Two runs into one folder at once: the second is refused naming the first, instead of
+// overwriting its files.
+TEST(RapidRun, ASecondRunIntoAFolderInUseIsRefused) {
+  rapid::testing::ScratchDir dir;
+  const std::string job = dir.file("job");
+  const pid_t first = ::fork();
+  ASSERT_GE(first, 0);
+  if (first == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, 1);
+    ::dup2(null, 2);
+    ::execl(RAPID_BIN, RAPID_BIN, "run", "--scenario", "pendulum", "--algo", "ddpg", "--seed", "0", "--set",
+            "steps=1000000", "--out", job.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!std::filesystem::exists(job + "/progress.json") && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const bool started = std::filesystem::exists(job + "/progress.json");
+  const auto second = started ? rapid_cli("run " + kShort + "--algo ddpg --seed 1 --out " + job, /*with_stderr=*/true)
+                              : test::CliOutput{};
+  ::kill(first, SIGKILL);
+  ::waitpid(first, nullptr, 0);
+  ASSERT_TRUE(started) << "the first run did not start";
+  EXPECT_EQ(second.exit_code, 2) << second.text;
+  EXPECT_EQ(second.text, "rapid: error: --out: run folder " + job + " is in use by another rapid run (pid " +
+                             std::to_string(first) + ")\n");
+  EXPECT_FALSE(std::filesystem::exists(job + "/record.json")) << "the second run wrote nothing";
 }
 
 // DDPG learns the swing-up: ≥ −200 final mean evaluation return within 20,000 steps (a

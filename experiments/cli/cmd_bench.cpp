@@ -13,6 +13,7 @@
 #include "experiments/cli/checks.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
+#include "experiments/cli/output_folder.hpp"
 #include "experiments/run/job.hpp"
 #include "experiments/run/run_config.hpp"
 
@@ -69,6 +70,7 @@ int run_bench(const BenchOptions& o) {
     // It trains on the scenarios' config files as they are, which must give it every key it needs.
     for (const std::string& s : scenarios) check_config_fits(o.train_algo, configs.at(s));
   });
+  if (!o.json_file.empty()) check_output_file("--json", o.json_file);  // before minutes of measuring
   const BenchPlan plan = make_plan(o.quick);
   const auto t_start = Clock::now();
   bench::BenchReport report;

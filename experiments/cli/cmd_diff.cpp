@@ -7,6 +7,7 @@
 #include "core/atomic_file.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
+#include "experiments/cli/output_folder.hpp"
 #include "experiments/report/baseline.hpp"
 #include "experiments/report/summarize.hpp"
 #include "experiments/run/json_input.hpp"
@@ -48,14 +49,13 @@ void print_differences(const DiffResult& r) {
 
 int diff_command(const DiffCliOptions& o) {
   if (!(o.rtol >= 0.0)) throw UsageError("--rtol: must be a number ≥ 0, got " + std::to_string(o.rtol));
+  if (o.write) check_output_file("BASELINE", o.baseline);  // before the sweep is read
   SummaryOptions summary_options;
   summary_options.dataset_stats = false;
   summary_options.claims = false;
   const Summary summary = check_option("SWEEP_DIR", [&] { return build_summary(o.dir, summary_options); });
 
   if (o.write) {
-    const fs::path parent = fs::absolute(o.baseline).parent_path();
-    if (!fs::is_directory(parent)) throw UsageError("BASELINE: folder '" + parent.string() + "' does not exist");
     int ok = 0, expected = 0;
     for (const CellSummary& c : summary.cells) {
       ok += c.n_ok;

@@ -3,6 +3,7 @@
 
 #include "algos/registry.hpp"
 #include "core/dataset.hpp"
+#include "core/folder_lock.hpp"
 #include "envs/env.hpp"
 #include "experiments/cli/checks.hpp"
 #include "experiments/cli/cli_config.hpp"
@@ -12,6 +13,7 @@
 #include "experiments/run/dataset_build.hpp"
 #include "experiments/run/job.hpp"
 #include "experiments/run/prior_dataset.hpp"
+#include "experiments/run/record.hpp"
 #include "experiments/run/run_config.hpp"
 #include "experiments/run/run_job.hpp"
 #include "experiments/sweep/grid.hpp"
@@ -23,6 +25,7 @@ namespace {
 struct RunOptions {
   std::string scenario, algo, dataset, dataset_dir = "datasets", grid, out, profile;
   std::uint64_t seed = 0;
+  bool force = false;
   std::vector<std::string> sets;
   std::vector<long> checkpoint_at;
 };
@@ -49,6 +52,15 @@ void check_prior_dataset(const std::string& path, const std::string& scenario, c
   }
 }
 
+// One run per folder at a time: a second one would overwrite the first one's files.
+std::unique_ptr<FolderLock> lock_run_folder(const std::string& dir) {
+  try {
+    return std::make_unique<FolderLock>(dir, job_files::kLock, "run folder", "another rapid run");
+  } catch (const FolderBusy& e) {
+    throw UsageError(std::string("--out: ") + e.what());
+  }
+}
+
 int run_command(const RunOptions& o) {
   JobSpec spec;
   check_option("--scenario", [&] { make_env(o.scenario); });
@@ -72,7 +84,12 @@ int run_command(const RunOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  make_output_folder(o.out, "--out");  // last: nothing is written before every input is checked
+  // Last: nothing is written before every input is checked. A folder a run wrote holds its
+  // record or, if that run was killed first, its lock file.
+  refuse_foreign_folder(o.out, "--out", {{job_files::kRecord, is_run_record_file}, job_files::kLock}, "a run folder",
+                        o.force);
+  make_output_folder(o.out, "--out");
+  const auto lock = lock_run_folder(o.out);
   return run_job(spec);
 }
 
@@ -94,6 +111,7 @@ Command add_run_command(CLI::App& parent) {
   sub->add_option("--profile", o->profile, "config profile: short (default) or flow (docs/scenarios.md)");
   sub->add_option("--set", o->sets, "override a config key: --set key=value (repeatable)");
   sub->add_option("--out", o->out, "job folder for record.json, actor.ckpt and progress.json")->required();
+  sub->add_flag("--force", o->force, "write into an --out folder that holds files but no run record");
   sub->add_option("--checkpoint-at", o->checkpoint_at, "also save the actor after these steps")->group("");
   return {sub, [o] { return run_command(*o); }};
 }

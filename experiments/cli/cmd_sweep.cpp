@@ -95,7 +95,7 @@ std::string out_option(const SweepOptions& o, const fs::path& dir) {
 std::unique_ptr<SweepLock> lock_folder(const fs::path& dir) {
   try {
     return std::make_unique<SweepLock>(dir);
-  } catch (const SweepFolderBusy& e) {
+  } catch (const FolderBusy& e) {
     throw UsageError(e.what());
   }
 }

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cstring>
 
+#include "core/atomic_file.hpp"
 #include "experiments/cli/errors.hpp"
 
 namespace rapid {
@@ -26,12 +27,26 @@ void make_output_folder(const fs::path& dir, const std::string& option) {
     throw UsageError(option + ": cannot write into " + quoted + ": " + std::strerror(errno));
 }
 
-void refuse_foreign_folder(const fs::path& dir, const std::string& option, const std::vector<std::string>& markers,
+void check_output_file(const std::string& option, const std::string& path) {
+  if (path.empty()) throw UsageError(option + ": empty file name");
+  const std::string quoted = "'" + path + "'";
+  const std::string kind = not_a_regular_file(path);
+  if (kind == "a folder") throw UsageError(option + ": " + quoted + " is a folder, expected a file name");
+  if (!kind.empty())
+    throw UsageError(option + ": " + quoted + " is " + kind + ", not a regular file; name a new or regular file");
+  const fs::path parent = fs::path(path).parent_path();
+  const fs::path folder = parent.empty() ? fs::path(".") : parent;
+  if (!fs::is_directory(folder)) throw UsageError(option + ": folder '" + folder.string() + "' does not exist");
+  if (::access(folder.c_str(), W_OK | X_OK) != 0)
+    throw UsageError(option + ": cannot write into folder '" + folder.string() + "': " + std::strerror(errno));
+}
+
+void refuse_foreign_folder(const fs::path& dir, const std::string& option, const std::vector<FolderMarker>& markers,
                            const std::string& what, bool force) {
   std::error_code ec;
   if (force || !fs::is_directory(dir, ec) || fs::is_empty(dir, ec)) return;
-  for (const std::string& m : markers)
-    if (fs::exists(dir / m, ec)) return;
+  for (const FolderMarker& m : markers)
+    if (fs::exists(dir / m.file, ec) && (!m.accepts || m.accepts((dir / m.file).string()))) return;
   throw UsageError(option + ": '" + dir.string() + "' holds files but is not " + what +
                    "; name a new or empty folder, or add --force to write into it anyway");
 }

@@ -6,6 +6,7 @@
 
 #include "core/atomic_file.hpp"
 #include "experiments/cli/errors.hpp"
+#include "experiments/cli/output_folder.hpp"
 #include "experiments/run/run_config.hpp"
 
 namespace rapid {
@@ -13,15 +14,6 @@ namespace rapid {
 namespace fs = std::filesystem;
 
 namespace {
-
-// The folder a file is to be written into must exist (nothing is created on the user's behalf).
-void check_output_file(const std::string& option, const std::string& path) {
-  if (path.empty()) throw UsageError(option + ": empty file name");
-  const fs::path p(path);
-  if (fs::is_directory(p)) throw UsageError(option + ": '" + path + "' is a folder, expected a file name");
-  const fs::path folder = p.parent_path().empty() ? fs::path(".") : p.parent_path();
-  if (!fs::is_directory(folder)) throw UsageError(option + ": folder '" + folder.string() + "' does not exist");
-}
 
 // The run record behind --settings-from: RUN/record.json or the file itself.
 nlohmann::json read_run_record(const std::string& from) {

@@ -16,6 +16,9 @@ namespace job_files {
 inline constexpr const char* kRecord = "record.json";      // the run record, written last
 inline constexpr const char* kProgress = "progress.json";  // how far it is, while it runs
 inline constexpr const char* kActor = "actor.ckpt";        // the trained actor
+// flock()ed by the `rapid run` writing the folder (core/folder_lock.hpp); it stays afterwards, so
+// it also marks a folder a run was killed in as one of rapid's.
+inline constexpr const char* kLock = ".rapid-run.lock";
 }  // namespace job_files
 
 struct JobSpec {

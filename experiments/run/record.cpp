@@ -1,9 +1,19 @@
 #include "experiments/run/record.hpp"
 
+#include "experiments/run/json_input.hpp"
 #include "experiments/run/json_numbers.hpp"
 #include "experiments/run/provenance.hpp"
 
 namespace rapid {
+
+bool is_run_record_file(const std::string& path) {
+  try {
+    const nlohmann::json j = read_json_input(path);
+    return j.is_object() && j.value("schema", nlohmann::json()) == kRunRecordSchema;
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+}
 
 nlohmann::json start_record(const JobSpec& spec) {
   nlohmann::json record = {

@@ -13,6 +13,11 @@ namespace rapid {
 
 inline constexpr const char* kRunRecordSchema = "rapid.run/1";
 
+// Whether the file at `path` is a run record: JSON (read with json_input.hpp's bounds) whose
+// schema is kRunRecordSchema. How `rapid run --out` tells a folder it wrote from a folder of the
+// user's own that happens to hold a record.json.
+bool is_run_record_file(const std::string& path);
+
 // The record as the job starts: status "failed" until the job ends well, its cell and config,
 // and where the result comes from (provenance, with the start time).
 nlohmann::json start_record(const JobSpec& spec);

@@ -105,7 +105,9 @@ std::vector<std::string> job_arguments(const SweepJob& job) {
       args = {"run", "--scenario", job.scenario, "--algo", job.algo};
       if (!job.dataset.empty())
         args.insert(args.end(), {"--dataset", job.dataset, "--dataset-dir", datasets_root(job.reference_point())});
-      args.insert(args.end(), {"--seed", std::to_string(job.seed), "--grid", sweep_files::kGrid, "--out", job.dir});
+      // --force: the job folder is the sweep's, and holds its log.txt before the run starts.
+      args.insert(args.end(),
+                  {"--seed", std::to_string(job.seed), "--grid", sweep_files::kGrid, "--out", job.dir, "--force"});
       break;
   }
   const std::vector<std::string> sets = point_arguments(job.axis);

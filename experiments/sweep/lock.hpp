@@ -1,31 +1,19 @@
-// One sweep per folder: the runner holds flock() on SWEEP/.lock for its whole life. The kernel
-// drops the lock when the process dies however it dies, so a kill -9 never leaves a stale lock
-// behind. The file holds the owner's pid for the refusal message.
+// One sweep per folder: the runner holds flock() on SWEEP/.lock for its whole life
+// (core/folder_lock.hpp); array tasks share it, and `rapid status` probes it.
 #pragma once
 
 #include <filesystem>
 #include <ostream>
-#include <stdexcept>
+
+#include "core/folder_lock.hpp"
 
 namespace rapid {
 
-// "sweep folder X is in use by another rapid sweep (pid N)".
-class SweepFolderBusy : public std::runtime_error {
+// The runner's lock: exclusive, for the whole sweep. Throws FolderBusy "sweep folder X is in use
+// by another rapid sweep (pid N)".
+class SweepLock : public FolderLock {
  public:
-  using std::runtime_error::runtime_error;
-};
-
-class SweepLock {
- public:
-  // Takes the lock (creating the file); throws SweepFolderBusy if another process holds it and
-  // std::runtime_error if the file cannot be opened.
   explicit SweepLock(const std::filesystem::path& sweep_dir);
-  ~SweepLock();
-  SweepLock(const SweepLock&) = delete;
-  SweepLock& operator=(const SweepLock&) = delete;
-
- private:
-  int fd_ = -1;
 };
 
 // What a cluster array task holds while it runs (slurm_task.hpp): the same lock, shared, so a

@@ -7,6 +7,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "tests/special_files.hpp"
+
 #ifndef RAPID_BIN
 #error "RAPID_BIN must name the built rapid binary"
 #endif
@@ -84,4 +86,24 @@ TEST(RapidBench, BadInputExitsTwo) {
   EXPECT_EQ(run("bench --quick --train-algo nothing"), 2);
   // It trains on the config files as they are, which have no return_horizon.
   EXPECT_EQ(run("bench --quick --train-algo rapid-rl-return"), 2);
+}
+
+// --json names a file it can write, checked before the minutes of measuring: not a FIFO or a
+// symlink (which would be replaced), not in a read-only folder.
+TEST(RapidBench, AJsonFileThatCannotBeWrittenIsRefusedFirst) {
+  const fs::path dir = temp_file("outputs");
+  fs::create_directories(dir);
+  std::ofstream(dir / "mine.json") << "mine";
+  fs::create_symlink(dir / "mine.json", dir / "link.json");
+  ASSERT_TRUE(rapid::test::make_fifo((dir / "fifo.json").string()));
+  const std::string args = "bench --quick --no-sweep --scenario pendulum --json ";
+  EXPECT_EQ(run(args + (dir / "link.json").string()), 2);
+  EXPECT_EQ(run(args + (dir / "fifo.json").string()), 2);
+  {
+    const rapid::test::ReadOnlyFolder read_only(dir / "read-only");
+    if (read_only.usable()) EXPECT_EQ(run(args + (read_only / "bench.json")), 2);
+  }
+  EXPECT_TRUE(fs::is_symlink(dir / "link.json"));
+  EXPECT_TRUE(rapid::test::is_fifo((dir / "fifo.json").string()));
+  fs::remove_all(dir);
 }

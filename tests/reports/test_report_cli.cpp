@@ -6,6 +6,7 @@
 #include "tests/cli_runner.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
 #include "tests/reports/report_test_util.hpp"
+#include "tests/special_files.hpp"
 
 namespace rapid {
 namespace {
@@ -90,6 +91,32 @@ TEST_F(ReportCliTest, BadInputExitsTwoWithOneLine) {
   EXPECT_NE(out.text.find("--rtol"), std::string::npos) << out.text;
   EXPECT_EQ(rapid_cli("summarize --help").exit_code, 0);
   EXPECT_EQ(rapid_cli("diff --help").exit_code, 0);
+}
+
+// --write-baseline replaces only a regular file, in a folder it can write, and finds out before
+// reading the sweep: the symlink, FIFO, device or folder named stays as it was.
+TEST_F(ReportCliTest, WriteBaselineRefusesWhatIsNotARegularFileOrCannotBeWritten) {
+  const auto at = [&](const std::string& name) { return (scratch.path() / name).string(); };
+  report_test::write_text(at("mine.json"), "mine");
+  std::filesystem::create_symlink(at("mine.json"), at("link.json"));
+  ASSERT_TRUE(test::make_fifo(at("fifo.json")));
+  std::filesystem::create_directories(at("folder.json"));
+  std::vector<std::string> refused = {at("link.json"), at("fifo.json"), at("folder.json")};
+  const bool device = test::make_device(at("null.json"));  // root only
+  if (device) refused.push_back(at("null.json"));
+  const test::ReadOnlyFolder read_only(scratch.path() / "read-only");
+  if (read_only.usable()) refused.push_back(read_only / "baseline.json");
+  for (const std::string& path : refused) {
+    const auto out = rapid_cli("diff " + sweep.string() + " " + path + " --write-baseline", true);
+    EXPECT_EQ(out.exit_code, 2) << path << "\n" << out.text;
+    EXPECT_EQ(out.text.rfind("rapid: error: BASELINE: ", 0), 0u) << out.text;
+    EXPECT_EQ(std::count(out.text.begin(), out.text.end(), '\n'), 1) << out.text;
+  }
+  EXPECT_TRUE(std::filesystem::is_symlink(at("link.json")));
+  EXPECT_EQ(report_test::read_text(at("mine.json")), "mine");
+  EXPECT_TRUE(test::is_fifo(at("fifo.json")));
+  EXPECT_TRUE(std::filesystem::is_empty(at("folder.json")));
+  if (device) EXPECT_TRUE(test::is_device(at("null.json")));
 }
 
 TEST_F(ReportCliTest, DiffPassesOnAnIdenticalSweep) {

@@ -163,7 +163,7 @@ TEST(JobGraph, ExpandsCellsDdpgOncePerSeedAndTheDatasetStage) {
   EXPECT_EQ(job_arguments(graph.jobs[2]),
             (std::vector<std::string>{"run", "--scenario", "pendulum", "--algo", "rapid-rl", "--dataset", "initial",
                                       "--dataset-dir", "datasets", "--seed", "0", "--grid", "grid.json", "--out",
-                                      "jobs/pendulum/initial/rapid-rl/seed0"}));
+                                      "jobs/pendulum/initial/rapid-rl/seed0", "--force"}));
   EXPECT_EQ(job_arguments(graph.jobs[0]).back(), "--reference-only");
   // Every stage reports progress where `rapid status` looks (the dataset build included).
   EXPECT_EQ(job_progress_path(graph.jobs[0]), "datasets/pendulum/reference/progress.json");

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/special_files.hpp"
 #include "tests/watch/watch_test_util.hpp"
 
 namespace rapid {
@@ -127,6 +128,28 @@ TEST(WatchCli, BadInputIsOneLineAndWritesNothing) {
   expect_usage_error("rollout --scenario merge --policy sumo --settings-from " + other + " --record " + t,
                      "--settings-from", s);
   expect_usage_error("rollout --scenario motorway --policy sumo --record " + t, "--scenario", s);
+}
+
+// An output path that exists but is not a regular file, or whose folder cannot be written, is
+// bad input found before the rollout: the symlink, FIFO or device stays as it was.
+TEST(WatchCli, ARecordThatIsNotARegularFileOrCannotBeWrittenIsRefused) {
+  Scratch s;
+  test::spit(s / "mine.json", "mine");
+  std::filesystem::create_symlink(s / "mine.json", s / "link.json");
+  ASSERT_TRUE(test::make_fifo(s / "fifo.json"));
+  const bool device = test::make_device(s / "null.json");  // root only
+  const test::ReadOnlyFolder read_only(s.dir / "read-only");
+  const std::string args = "rollout --scenario merge --policy zero --episodes 1 --record ";
+  expect_usage_error(args + s / "link.json", "--record", s);
+  expect_usage_error(args + s / "fifo.json", "--record", s);
+  if (device) expect_usage_error(args + s / "null.json", "--record", s);
+  if (read_only.usable()) expect_usage_error(args + read_only / "t.json", "--record", s);
+  EXPECT_TRUE(std::filesystem::is_symlink(s / "link.json"));
+  EXPECT_EQ(test::slurp(s / "mine.json"), "mine");
+  EXPECT_TRUE(test::is_fifo(s / "fifo.json"));
+  if (device) EXPECT_TRUE(test::is_device(s / "null.json"));
+  EXPECT_EQ(run_shell(rapid(args + s / "fifo.json")).out,
+            "rapid: error: --record: '" + s / "fifo.json" + "' is a FIFO, not a regular file; name a new or regular file\n");
 }
 
 }  // namespace
