@@ -39,4 +39,10 @@ void write_dataset(const std::string& path, const Dataset& dataset);
 // Every failure is a DatasetError with a one-line message naming the file and the mismatch.
 Dataset read_dataset(const std::string& path, const DatasetExpectation& expect = {});
 
+// What read_dataset checks before it reads the arrays: the file opens as HDF5 (a file cut short
+// does not), every key, the types, ranks, one N > 0 for all arrays, the widths and the expected
+// dimensions. Cheap (no array is read), so the checksums and values are left to read_dataset.
+// Throws DatasetError as read_dataset does.
+void check_dataset_layout(const std::string& path, const DatasetExpectation& expect = {});
+
 }  // namespace rapid

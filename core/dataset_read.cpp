@@ -36,10 +36,15 @@ class Reader {
  public:
   Reader(const std::string& path, const DatasetExpectation& expect) : path_(path), expect_(expect) {}
 
-  Dataset read() {
+  // The file's structure and sizes, from metadata alone: nothing is read yet.
+  StoredArrays check() {
     open_file();
     require_all_keys();
-    const StoredArrays a = check_layout();
+    return check_layout();
+  }
+
+  Dataset read() {
+    const StoredArrays a = check();
     Dataset d = load(a);
     // NaN/inf would poison every critic target that samples them (even 0 · NaN is NaN).
     require_finite(h5::kObservations, h5::first_non_finite(d.observations));
@@ -224,20 +229,30 @@ class Reader {
   H5::H5File file_;
 };
 
-}  // namespace
-
-Dataset read_dataset(const std::string& path, const DatasetExpectation& expect) {
+// Runs `use` on a Reader of `path`, with the checks and the error that both entry points share.
+template <typename Use>
+auto with_reader(const std::string& path, const DatasetExpectation& expect, Use use) {
   H5::Exception::dontPrint();  // errors become exceptions with our message, not stderr dumps
   Reader reader(path, expect);
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw reader.fail("no such file");
   if (std::filesystem::is_directory(path, ec)) throw reader.fail("is a directory, not an HDF5 file");
   try {
-    return reader.read();
+    return use(reader);
   } catch (const H5::Exception& e) {
     // Opening a truncated file lands here ("truncated file: eof = …, stored_eof = …").
     throw reader.fail("unreadable HDF5 file (" + h5::error_stack_detail(e.getDetailMsg()) + ")");
   }
+}
+
+}  // namespace
+
+Dataset read_dataset(const std::string& path, const DatasetExpectation& expect) {
+  return with_reader(path, expect, [](Reader& r) { return r.read(); });
+}
+
+void check_dataset_layout(const std::string& path, const DatasetExpectation& expect) {
+  with_reader(path, expect, [](Reader& r) { r.check(); });
 }
 
 }  // namespace rapid

@@ -108,6 +108,8 @@ TEST(DefaultConfigs, OverridesAreCheckedByKeyTypeAndValue) {
   EXPECT_DOUBLE_EQ(sets["epsilon"].get<double>(), -0.2);
   EXPECT_THROW(parse_set_option("=3", sets), std::invalid_argument);
   EXPECT_THROW(parse_set_option("steps", sets), std::invalid_argument);
+  EXPECT_THROW(parse_set_option("epsilon=0.1", sets), std::invalid_argument) << "given twice";
+  EXPECT_DOUBLE_EQ(sets["epsilon"].get<double>(), -0.2);
 }
 
 TEST(DefaultConfigs, MessagesNameTheKeyAndWhatItAccepts) {

@@ -180,6 +180,22 @@ TEST(DatasetBuild, ASourceBeforeTheFirstUpdateIsRefused) {
   EXPECT_NE(stale.text.find("training the reference agent"), std::string::npos) << stale.text;
 }
 
+// A dataset that does not validate (here cut short, as a full disk or a copy can leave it) is not
+// up to date: the build writes it again instead of keeping it. The reference is kept.
+TEST(DatasetBuild, ATruncatedDatasetIsBuiltAgain) {
+  rapid::testing::ScratchDir dir;
+  write_grid(dir.file("grid.json"), 400);
+  const std::string cmd = "dataset build --scenario pendulum --grid " + dir.file("grid.json") + " --dir " + dir.file("data");
+  ASSERT_EQ(rapid_cli(cmd).exit_code, 0);
+  const std::string out = dir.file("data/pendulum");
+  const auto ref_time = mtime(out + "/reference/record.json");
+  fs::resize_file(out + "/medium.h5", fs::file_size(out + "/medium.h5") / 2);
+  const auto again = rapid_cli(cmd, /*with_stderr=*/true);
+  ASSERT_EQ(again.exit_code, 0) << again.text;
+  EXPECT_EQ(read_dataset(out + "/medium.h5", {3, 1, "pendulum"}).size(), 400u);
+  EXPECT_EQ(mtime(out + "/reference/record.json"), ref_time);
+}
+
 // A disk that fills up while the datasets are written: exit 1 with one line naming the file and
 // no temporary left (HDF5's own error path crashed, SIGSEGV). A file-size limit (RLIMIT_FSIZE,
 // with SIGXFSZ ignored) fails the write as a full disk does, without a disk to fill.

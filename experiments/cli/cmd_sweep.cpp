@@ -34,6 +34,7 @@ namespace fs = std::filesystem;
 struct SweepOptions {
   std::string grid, only, backend = "local", out;
   bool out_given = false;  // `--out ""` is a mistake, not a request for the default
+  bool only_given = false;  // and `--only ""` (an unset variable, say) not a request for the whole grid
   int jobs = 0;  // 0: the grid's "jobs", else the number of cores
   bool force = false;
   bool no_summary = false;
@@ -227,6 +228,8 @@ int sweep_of(const SweepOptions& o, const Grid& grid) {
   if (std::find(kBackends.begin(), kBackends.end(), o.backend) == kBackends.end())
     throw UsageError("--backend: '" + o.backend + "' is not available; expected local or slurm");
   if (o.out_given && o.out.empty()) throw UsageError("--out: must name a folder, got an empty path");
+  if (o.only_given && o.only.empty())
+    throw UsageError("--only: must name a subset, got an empty string; leave --only out to run the whole grid");
   const fs::path dir = o.out_given ? fs::path(o.out) : fs::path("results") / grid.name;
   if (o.check_references && o.reuse_datasets.empty())
     throw UsageError("--check-references: needs --reuse-datasets FROM, the folder whose references to check against");
@@ -324,7 +327,7 @@ Command add_sweep_command(CLI::App& parent) {
   sub->add_option("grid", o->grid, "grid file (experiments/grids/*.json)")->required();
   sub->add_option("--jobs,-j", o->jobs, "worker processes (default: the grid's \"jobs\", else the number of cores)")
       ->check(CLI::Range(1, 1024));
-  sub->add_option("--only", o->only, "run a subset: scenario=..,dataset=..,algo=..,seed=.. (repeat a key or use | for alternatives)");
+  const CLI::Option* only = sub->add_option("--only", o->only, "run a subset: scenario=..,dataset=..,algo=..,seed=.. (repeat a key or use | for alternatives)");
   sub->add_flag("--force", o->force, "rerun the selected jobs even if their records are ok");
   sub->add_option("--reuse-datasets", o->reuse_datasets,
                   "start from another sweep folder's reference agents and datasets where it built them for this grid's "
@@ -361,8 +364,9 @@ Command add_sweep_command(CLI::App& parent) {
       ->group("")
       ->check(count_validator(0));
   sub->add_option("--job-list", o->job_list, "the task list of --run-job, relative to the sweep folder")->group("");
-  return {sub, [o, slurm_only, out] {
+  return {sub, [o, slurm_only, out, only] {
             o->out_given = out->count() > 0;
+            o->only_given = only->count() > 0;
             for (const CLI::Option* opt : slurm_only) o->slurm_option_given = o->slurm_option_given || opt->count() > 0;
             return sweep_command(*o);
           }};

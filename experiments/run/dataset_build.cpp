@@ -202,6 +202,19 @@ nlohmann::json check_quality(const std::string& scenario, const std::map<std::st
 
 }  // namespace
 
+std::string datasets_problem(const DatasetFolder& folder, const std::vector<std::string>& names,
+                             const std::string& scenario, const RunConfig& config) {
+  const std::unique_ptr<Env> env = make_run_env(scenario, config);
+  for (const std::string& name : names) {
+    try {
+      check_dataset_layout(folder.dataset(name), {env->obs_dim(), env->act_dim(), scenario});
+    } catch (const DatasetError& e) {
+      return e.what();
+    }
+  }
+  return "";
+}
+
 void check_dataset_sources(const RunConfig& config, long reference_steps) {
   const long budget = config.steps;
   const long steps = reference_steps > 0 ? reference_steps : budget;
@@ -239,9 +252,11 @@ int build_datasets(const DatasetBuildSpec& spec) {
                                     {"transitions", spec.reference.transitions},
                                     {"noise_std", spec.reference.noise_std}};
   const std::string build_hash = fnv1a_hex(build_key.dump());
-  bool have_files = true;
-  for (const auto& name : dataset_names()) have_files = have_files && fs::exists(folder.dataset(name));
-  if (!spec.force && have_files && record_is_done(folder.done_marker(), build_hash)) return 0;
+  if (!spec.force && record_is_done(folder.done_marker(), build_hash)) {
+    const std::string problem = datasets_problem(folder, dataset_names(), spec.scenario, config);
+    if (problem.empty()) return 0;
+    std::cerr << "dataset build: " << problem << "; building the datasets again\n";
+  }
 
   std::map<std::string, Dataset> made = collect_sources(spec, folder, srcs, steps, build_hash);
   Metadata mixed_meta = made.at("final").metadata;

@@ -34,6 +34,14 @@ struct DatasetFolder {
   std::string progress() const { return dir + "/" + job_files::kProgress; }
 };
 
+// Why datasets `names` of `folder` cannot be used as they are: the first that is missing or does
+// not validate (core's check_dataset_layout, at the dimensions of `scenario` set up by `config`),
+// or "" when every one does. Cheap: no array is read. The one rule for what `rapid dataset build`
+// takes as up to date and for when a sweep's dataset job is done (sweep/state.hpp), so a
+// dataset cut short is built again, as a corrupt record is.
+std::string datasets_problem(const DatasetFolder& folder, const std::vector<std::string>& names,
+                             const std::string& scenario, const RunConfig& config);
+
 // The reference agent behind the datasets and how its data is collected (a grid's "reference").
 struct ReferenceSettings {
   std::uint64_t seed = 1000;   // its own seed, never one of the evaluation seeds

@@ -78,6 +78,8 @@ void parse_set_option(const std::string& assignment, nlohmann::json& overrides) 
   if (eq == std::string::npos || eq == 0)
     throw std::invalid_argument("--set: expected key=value, got '" + assignment + "'");
   const std::string key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  // Two values for one key are a mistake (a copied command line), not "the last one wins".
+  if (overrides.contains(key)) throw std::invalid_argument("--set: key '" + key + "' is given twice");
   nlohmann::json value = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (value.is_discarded()) value = text;
   overrides[key] = value;

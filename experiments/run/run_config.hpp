@@ -34,7 +34,8 @@ nlohmann::json default_config_json(const std::string& scenario, const std::strin
 void apply_overrides(nlohmann::json& config, const nlohmann::json& overrides, const std::string& scenario,
                      const std::string& origin, const std::vector<ConfigKey>& keys = config_keys());
 
-// Parses "key=value" (value as JSON, else as a plain string) into `overrides`.
+// Parses "key=value" (value as JSON, else as a plain string) into `overrides`. Throws
+// std::invalid_argument for a malformed assignment or a key `overrides` already holds.
 void parse_set_option(const std::string& assignment, nlohmann::json& overrides);
 
 // The config of a cell: the scenario's file in `profile`, then the grid's overrides (if

@@ -4,6 +4,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/hash.hpp"
+#include "experiments/run/dataset_build.hpp"
 #include "experiments/run/job.hpp"
 #include "experiments/run/json_input.hpp"
 #include "experiments/run/provenance.hpp"
@@ -108,8 +109,16 @@ bool job_is_done(const SweepFolder& folder, const SweepJob& job) {
   const auto marker = read_json_file(folder.path(job_marker_path(job)));
   if (!says_ok(marker)) return false;
   const auto outcome = read_outcome(folder, job);
-  return outcome && outcome->state == "ok" && outcome->inputs_hash == dataset_stage_inputs_hash(folder, job) &&
-         outcome->marker_hash == marker_config_hash(marker);
+  if (!outcome || outcome->state != "ok" || outcome->inputs_hash != dataset_stage_inputs_hash(folder, job) ||
+      outcome->marker_hash != marker_config_hash(marker))
+    return false;
+  return job.kind != JobKind::kDatasets || dataset_job_problem(folder, job).empty();
+}
+
+std::string dataset_job_problem(const SweepFolder& folder, const SweepJob& job) {
+  const DatasetFolder datasets(folder.path(datasets_root(job.reference_point())).string(), job.scenario);
+  const RunConfig config = run_config_from_json(cell_config(folder.grid, job.scenario, job.axis), job.scenario);
+  return datasets_problem(datasets, folder.grid.datasets, job.scenario, config);
 }
 
 void mark_dataset_stage_done(const SweepFolder& folder, const SweepJob& job, int attempts) {

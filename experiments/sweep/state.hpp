@@ -57,8 +57,13 @@ std::optional<Outcome> read_outcome(const SweepFolder& folder, const SweepJob& j
 std::optional<nlohmann::json> read_json_file(const std::filesystem::path& path);
 
 // "Done" (docs/design.md §Sweeps): a cell's record is ok with the expected hash; a reference/dataset job's
-// marker is ok and its outcome says it ran for the grid's current inputs.
+// marker is ok and its outcome says it ran for the grid's current inputs; a dataset job's
+// datasets also validate (dataset_job_problem).
 bool job_is_done(const SweepFolder& folder, const SweepJob& job);
+
+// For a dataset job: what is wrong with the datasets of the grid that it built, as `rapid dataset
+// build` judges them (datasets_problem: missing, or cut short, …); "" when nothing is.
+std::string dataset_job_problem(const SweepFolder& folder, const SweepJob& job);
 
 // Notes a finished reference/dataset job as done for the current grid (the runner calls this
 // after the child succeeded; tests call it after providing the datasets themselves).

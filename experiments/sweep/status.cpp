@@ -60,8 +60,10 @@ class Inspector {
     if (job_is_done(folder_, job)) return {i, "ok", ""};
     const auto marker_path = folder_.path(job_marker_path(job));
     if (const auto failed = failed_attempt(i)) return *failed;
-    if (mtime(marker_path) >= 0) return {i, "stale", "the grid changed since it ran (or it was built outside the sweep)"};
-    return waiting(i);
+    if (mtime(marker_path) < 0) return waiting(i);
+    if (job.kind == JobKind::kDatasets)
+      if (std::string problem = dataset_job_problem(folder_, job); !problem.empty()) return {i, "stale", problem};
+    return {i, "stale", "the grid changed since it ran (or it was built outside the sweep)"};
   }
 
   // A cell, through the one judgement of its record that the runner and the reports share.

@@ -105,11 +105,12 @@ TEST_F(SlurmCluster, AFailedTaskShowsInStatusAndRunsAgainOnTheNextSubmission) {
   submit_and_wait(grid, sweep);
   ASSERT_EQ(status(sweep)["counts"]["ok"], 6);
 
-  // A corrupt dataset: `rapid run` refuses it as bad input (exit 2, nothing written), so the
-  // selected cell fails at once, without a retry. (Forced: its ok record is otherwise done.)
+  // A dataset `rapid run` refuses as bad input (exit 2, nothing written), so the selected cell
+  // fails at once, without a retry. (Forced: its ok record is otherwise done. Its actions lie
+  // outside [-1, 1]: a file that does not open would make the dataset job build it again.)
   const fs::path dataset = sweep / "datasets/pendulum/initial.h5";
   const std::string good = slurp(dataset);
-  std::ofstream(dataset, std::ios::trunc) << "not an HDF5 file";
+  write_dataset(dataset.string(), testing::make_dataset(3, 1, {50}));
   const Result failing = submit_and_wait(grid, sweep, "--only algo=rapid-rl,seed=0 --force");
   EXPECT_NE(task_output(sweep, "cells-pendulum", failing).find("failed pendulum/initial/rapid-rl/seed0 after 1 attempt"),
             std::string::npos)

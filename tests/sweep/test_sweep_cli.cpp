@@ -100,8 +100,8 @@ TEST(SweepCli, InvalidJsonMissingFileBadOptionsAndBadStatusFolder) {
 // Grid files no grid would be, and --out values that are no folder: exit 2, one short line naming
 // what is wrong, nothing written. (Before: a segfault on deep nesting, a megabyte-long message,
 // reading /dev/zero forever, "unexpected end of input" for a folder, a duplicate key silently
-// taking the last value, a grid name too long for a file name failing after the lock, and
-// `--out ""` meaning results/<name>.)
+// taking the last value, a grid name too long for a file name failing after the lock,
+// `--out ""` meaning results/<name>, `--only ""` the whole grid and a second `--set k=…` winning.)
 TEST(SweepCli, HostileGridFilesAndOutFoldersAreRefusedWithOneShortLine) {
   testing::ScratchDir dir;
   const fs::path out = dir.path() / "sweep";
@@ -147,6 +147,13 @@ TEST(SweepCli, HostileGridFilesAndOutFoldersAreRefusedWithOneShortLine) {
       {"sweep /dev/zero --out " + out.string(), "grid /dev/zero: is larger than 1 MiB"},
       {"sweep " + dir.path().string() + " --out " + out.string(), "grid " + dir.path().string() + ": is a directory"},
       {"sweep " + good + " --out ''", "--out: must name a folder, got an empty path"},
+      // An empty --only is a mistake (an unset variable), not a request for the whole grid.
+      {"sweep " + good + " --only '' --out " + out.string(), "--only: must name a subset, got an empty string"},
+      // A key given twice is a mistake, not "the last one wins".
+      {"run --scenario pendulum --algo ddpg --seed 0 --set steps=400 --set steps=600 --out " + out.string(),
+       "--set: key 'steps' is given twice"},
+      {"dataset build --scenario pendulum --set steps=400 --set steps=600 --dir " + out.string(),
+       "--set: key 'steps' is given twice"},
       {"sweep " + good + " --out " + (dir.path() / "a_file").string(), "--out: '" + (dir.path() / "a_file").string() + "' is not a folder"},
       {"status " + (dir.path() / "a_file").string(), "SWEEP_DIR: '" + (dir.path() / "a_file").string() + "' is not a folder"},
   };

@@ -3,8 +3,10 @@
 // and `rapid status` counts what the files say, failed jobs with their errors included.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 
+#include "core/dataset_io.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
 #include "tests/sweep/sweep_test_util.hpp"
 
@@ -158,15 +160,44 @@ TEST_F(SmallSweep, AGridChangeRerunsExactlyTheJobsItTouches) {
   EXPECT_EQ(s["counts"]["stale"], 3 + 2);  // the rapid-rl cells and the dataset stage
 }
 
+// The same rule for a dataset as for a record: one that does not validate (here cut short) is
+// not done, so the dataset job runs again, rebuilds it, and its cells rerun on the new file.
+TEST_F(SmallSweep, ATruncatedDatasetIsNotDoneAndARerunRebuildsIt) {
+  fs::remove_all(sweep_);  // the sweep builds its reference and datasets itself
+  ASSERT_EQ(sweep().exit_code, 0);
+  const fs::path dataset = sweep_ / "datasets/pendulum/initial.h5";
+  fs::resize_file(dataset, fs::file_size(dataset) / 2);
+  const json before = status();
+  EXPECT_EQ(before["counts"]["ok"], 6 - 1 - 2) << "the dataset job and its two cells are not done";
+  for (const json& job : before["jobs"])
+    if (job["job"] == "pendulum/datasets") {
+      EXPECT_EQ(job["state"], "stale");
+      EXPECT_NE(job["detail"].get<std::string>().find("initial.h5: unreadable HDF5 file (truncated file"),
+                std::string::npos) << job["detail"];
+    }
+
+  const Result rerun = sweep();
+  ASSERT_EQ(rerun.exit_code, 0) << rerun.output;
+  const auto ran = jobs_ran(sweep_);
+  EXPECT_NE(std::find(ran.begin(), ran.end(), "pendulum/datasets"), ran.end()) << rerun.output;
+  EXPECT_GT(read_dataset(dataset.string()).size(), 0u);
+  const auto records = comparable_records(sweep_);
+  for (const char* cell : {"jobs/pendulum/initial/rapid-rl/seed0", "jobs/pendulum/initial/rapid-rl/seed1"})
+    EXPECT_EQ(records.at(cell)["status"], "ok") << cell;
+  const json st = status();
+  EXPECT_EQ(st["counts"]["ok"], 6) << st.dump(1);
+}
+
 TEST_F(SmallSweep, StatusCountsStatesAndShowsTheFailedJobsError) {
-  // A corrupt dataset makes its cells fail: `rapid run` refuses it (exit 2, nothing written), so
-  // the sweep does not retry it.
+  // A dataset `rapid run` refuses makes its cells fail (exit 2, nothing written), so the sweep
+  // does not retry it. (Its actions lie outside [-1, 1]: a file that does not open would not do,
+  // since the dataset job is not done with it and builds it again.)
   grid_["datasets"] = {"initial", "medium"};
   grid_["seeds"] = {0};
   grid_["max_retries"] = 1;
   write_grid();
   provide_datasets(sweep_, grid_path_);
-  std::ofstream(sweep_ / "datasets/pendulum/medium.h5", std::ios::trunc) << "not an HDF5 file";
+  write_dataset((sweep_ / "datasets/pendulum/medium.h5").string(), testing::make_dataset(3, 1, {50}));
 
   const Result r = sweep();
   EXPECT_EQ(r.exit_code, 1) << r.output;
