@@ -230,9 +230,8 @@ class TrainingRun {
     EvalResult r = evaluate(env_, agent_, with_final ? std::max(config_.eval_episodes, config_.final_eval_episodes)
                                                      : config_.eval_episodes);
     if (with_final) {
-      log_.final_eval = r;
+      log_.final_eval = head_of(r, config_.final_eval_episodes);
       r = head_of(r, config_.eval_episodes);
-      log_.final_eval = head_of(*log_.final_eval, config_.final_eval_episodes);
     }
     log_.eval.push_back({step, target, r.return_mean, r.return_std, r.collision_rate});
     log_.eval_seconds += seconds_since(t0);
