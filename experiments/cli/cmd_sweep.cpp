@@ -14,6 +14,7 @@
 #include "experiments/cli/errors.hpp"
 #include "experiments/cli/output_folder.hpp"
 #include "experiments/cli/sweep_decide.hpp"
+#include "experiments/cli/sweep_decide_slurm.hpp"
 #include "experiments/sweep/grid.hpp"
 #include "experiments/sweep/local_backend.hpp"
 #include "experiments/sweep/lock.hpp"
@@ -51,6 +52,9 @@ struct SweepOptions {
   // The hidden array-task mode (sweep/slurm_task.hpp): the positional argument is the sweep folder.
   long run_job = -1;
   std::string job_list;
+  // The hidden follow-up mode of --decide on Slurm (cli/sweep_decide_slurm.hpp): the positional
+  // argument is the sweep folder.
+  bool decide_step = false;
 };
 
 // "90", "90s", "45m", "2h", "1.5h", "1d" → seconds; throws UsageError naming the option.
@@ -191,13 +195,19 @@ int submit_to_slurm(const SweepOptions& o, SweepFolder& folder, const Selection&
   const auto lock = lock_folder(dir);
   update_grid_file(folder, std::cerr);
   reuse_datasets_from(source, folder);
+  const DecideOnSlurm decide{.slurm = options, .summary = !o.no_summary, .animations = !o.no_animations};
+  if (o.decide) start_decide(dir, folder.grid, o.decide_settings, {{"slurm", decide_on_slurm_json(decide)}});
   SlurmPlan plan = plan_slurm_sweep(folder, selection, o.force);
   if (plan.arrays.empty()) {
     std::cout << "sweep " << dir.string() << ": nothing to submit, all " << plan.needed << " jobs are done\n";
-    return kExitOk;
+    if (!o.decide) return kExitOk;
   }
   try {
-    submit_slurm_plan(folder, plan, options);
+    if (!plan.arrays.empty()) submit_slurm_plan(folder, plan, options);
+    if (o.decide) {
+      const int code = continue_decide_on_slurm(folder, plan, decide, std::cout);
+      if (plan.arrays.empty()) return code;
+    }
   } catch (const SlurmError& e) {
     std::cerr << "rapid sweep: " << e.what() << "\n";
     return kExitFailed;
@@ -242,8 +252,6 @@ int sweep_of(const SweepOptions& o, const Grid& grid) {
     throw UsageError(e.what());
   }
   if (o.decide) {
-    if (o.backend == "slurm")
-      throw UsageError("--decide: for the local backend for now (it looks at the records between blocks of seeds)");
     if (o.decide_settings.max_seeds < static_cast<int>(grid.seeds.size()))
       throw UsageError("--max-seeds: " + std::to_string(o.decide_settings.max_seeds) + " is below the grid's " +
                        std::to_string(grid.seeds.size()) + " seeds");
@@ -269,7 +277,7 @@ int sweep_of(const SweepOptions& o, const Grid& grid) {
   const auto lock = lock_folder(dir);
   update_grid_file(folder, std::cerr);
   if (!o.check_references) reuse_datasets_from(source, folder);
-  if (o.decide) start_decide(dir, grid, o.decide_settings);
+  if (o.decide) start_decide(dir, folder.grid, o.decide_settings);
 
   std::cerr << "rapid sweep: " << grid.name << " → " << dir.string() << " (" << options.workers << " worker"
             << (options.workers == 1 ? "" : "s") << (o.only.empty() ? "" : ", only " + o.only)
@@ -289,18 +297,29 @@ int sweep_of(const SweepOptions& o, const Grid& grid) {
     if (j.state == "failed" || j.state == "diverged" || j.state == "blocked")
       std::cout << "  " << j.state << " " << j.id << ": " << j.error << "\n";
   if (report.interrupted_by) return kExitInterrupted;
-  if (o.decide && report.all_ok() && !run_decide_looks(dir, grid, options, o.decide_settings, std::cerr))
-    return kExitInterrupted;
+  bool decided_ok = true;  // --decide's looks ran their jobs ok
+  if (o.decide && report.all_ok()) {
+    const RunLookJobs run_here = [&options](const SweepFolder& look_folder, const Selection& selection) {
+      LocalSweepOptions look = options;
+      look.selection = selection;
+      const SweepReport r = run_local_sweep(look_folder, look);
+      return r.interrupted_by ? LookJobs::kInterrupted : r.all_ok() ? LookJobs::kDone : LookJobs::kFailed;
+    };
+    const DecideState state = advance_decide(dir, o.decide_settings, run_here, std::cerr);
+    if (state == DecideState::kInterrupted) return kExitInterrupted;
+    if (state == DecideState::kFailed) decided_ok = false;
+  }
   const bool references_agree = !o.check_references || check_references_against(folder, *source);
   // Refresh the reports from whatever records exist (a partial sweep or an --only rerun too). A
   // signal meanwhile is an interrupted sweep (130); reports that fail make it a failed one.
   const int reports = o.no_summary ? kExitOk : summarize_sweep(dir.string(), "", /*plots=*/true, !o.no_animations);
   if (reports == kExitInterrupted) return kExitInterrupted;
-  return report.all_ok() && references_agree && reports == kExitOk ? kExitOk : kExitFailed;
+  return report.all_ok() && decided_ok && references_agree && reports == kExitOk ? kExitOk : kExitFailed;
 }
 
 int sweep_command(const SweepOptions& o) {
   if (o.run_job >= 0) return sweep_task_command(o);
+  if (o.decide_step) return decide_step_command(o.grid, std::cout);
   Grid grid;
   try {
     grid = load_grid(o.grid);
@@ -364,6 +383,8 @@ Command add_sweep_command(CLI::App& parent) {
       ->group("")
       ->check(count_validator(0));
   sub->add_option("--job-list", o->job_list, "the task list of --run-job, relative to the sweep folder")->group("");
+  sub->add_flag("--decide-step", o->decide_step, "run --decide's next look in the sweep folder given as GRID (on Slurm)")
+      ->group("");
   return {sub, [o, slurm_only, out, only] {
             o->out_given = out->count() > 0;
             o->only_given = only->count() > 0;

@@ -24,16 +24,16 @@ Command add_bench_command(CLI::App& parent);
 Command add_budget_command(CLI::App& parent);
 Command add_recheck_command(CLI::App& parent);
 
-// `rapid summarize SWEEP_DIR [--out DIR]`, also run by `rapid sweep` when it ends: the reports
-// (with `plots` the figures, with `animations` too the best and worst cells' animations) into
-// DIR, default the sweep folder. Returns the exit code. With `force` an --out folder that holds
-// other files is written into anyway.
 // `rapid sweep` of a parsed grid into `out` on local processes (`jobs` 0: one per core), starting
 // from `reuse_from`'s references and datasets where it has them for this grid (empty: none), its
 // reports refreshed at the end. Returns the exit code; throws UsageError as `rapid sweep` does.
 struct Grid;
 int sweep_grid(const Grid& grid, const std::string& out, const std::string& reuse_from, int jobs);
 
+// `rapid summarize SWEEP_DIR [--out DIR]`, also run by `rapid sweep` when it ends: the reports
+// (with `plots` the figures, with `animations` too the best and worst cells' animations) into
+// DIR, default the sweep folder. Returns the exit code. With `force` an --out folder that holds
+// other files is written into anyway.
 int summarize_sweep(const std::string& sweep_dir, const std::string& out_dir, bool plots, bool animations,
                     bool force = false);
 

@@ -103,8 +103,14 @@ Selection parse_selection(const std::string& text, const Grid& grid, const JobGr
   return s;
 }
 
+std::string cell_key(const SweepJob& job) {
+  const std::string id = job.id();
+  return id.substr(0, id.rfind("/seed"));
+}
+
 bool selects(const Selection& s, const SweepJob& job) {
   if (job.kind != JobKind::kCell) return s.text.empty();
+  if (!s.cells.empty() && !s.cells.count(cell_key(job))) return false;
   const std::string dataset = job.dataset.empty() ? sweep_files::kNoDataset : job.dataset;
   const bool named = (s.scenarios.empty() || s.scenarios.count(job.scenario)) &&
                      (s.datasets.empty() || s.datasets.count(dataset)) && (s.algos.empty() || s.algos.count(job.algo)) &&

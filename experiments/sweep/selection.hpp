@@ -23,12 +23,18 @@ struct Selection {
   std::set<std::string> scenarios, datasets, algos;
   std::set<std::uint64_t> seeds;
   std::map<std::string, std::vector<nlohmann::json>> axes;  // axis key → accepted values
+  // Whole cells by key ("merge/initial/rapid-rl", "merge/none/ddpg/epsilon=0.3": a cell job's id
+  // without its /seedN), for `rapid sweep --decide`'s looks; empty: any cell.
+  std::set<std::string> cells;
   std::string text;  // as given, for the manifest; empty = everything
 };
 
 // Throws std::invalid_argument("--only: …") for an unknown key, a value not in the grid, or a
 // selection that matches no job.
 Selection parse_selection(const std::string& text, const Grid& grid, const JobGraph& graph);
+
+// A cell job's cell key (its id without the seed): "merge/initial/rapid-rl".
+std::string cell_key(const SweepJob& job);
 
 // Whether a cell passes the filters (dataset-stage jobs are never selected directly).
 bool selects(const Selection& selection, const SweepJob& job);

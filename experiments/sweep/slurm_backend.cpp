@@ -125,6 +125,26 @@ nlohmann::json read_submissions(const SweepFolder& folder) {
   return {{"schema", kSubmissionsSchema}, {"submissions", nlohmann::json::array()}};
 }
 
+// The sweep folder as the scripts name it: absolute, without a trailing slash.
+std::string absolute_folder(const SweepFolder& folder) {
+  const std::string dir = fs::absolute(folder.dir).lexically_normal().string();
+  return dir.size() > 1 && dir.back() == '/' ? dir.substr(0, dir.size() - 1) : dir;
+}
+
+// Where and how long a job may run, and the user's own sbatch options: the same for every job
+// of a submission.
+void placement_lines(std::ostream& s, const SlurmOptions& o) {
+  if (!o.partition.empty()) s << "#SBATCH --partition=" << o.partition << "\n";
+  if (!o.time.empty()) s << "#SBATCH --time=" << o.time << "\n";
+  for (const auto& arg : o.sbatch_args) s << "#SBATCH " << arg << "\n";
+}
+
+// sbatch --parsable's output → the job id, or empty if it is not one.
+std::string parsed_job_id(const CommandResult& r) {
+  const std::string id = r.out.substr(0, r.out.find_first_of(";\n"));  // "id" or "id;cluster"
+  return r.exit_code != 0 || id.empty() || id.find_first_not_of("0123456789") != std::string::npos ? "" : id;
+}
+
 }  // namespace
 
 std::size_t SlurmPlan::tasks() const {
@@ -183,8 +203,7 @@ SlurmPlan plan_slurm_sweep(const SweepFolder& folder, const Selection& selection
 std::string sbatch_script(const SweepFolder& folder, const SlurmPlan& plan, std::size_t a, const std::string& after,
                           const SlurmOptions& o) {
   const SlurmArray& array = plan.arrays.at(a);
-  const std::string dir = fs::absolute(folder.dir).lexically_normal().string();
-  const std::string base = dir.size() > 1 && dir.back() == '/' ? dir.substr(0, dir.size() - 1) : dir;
+  const std::string base = absolute_folder(folder);
   std::ostringstream s;
   s << "#!/bin/bash\n"
     << "# rapid sweep " << folder.grid.name << ", array " << a + 1 << "/" << plan.arrays.size() << ", "
@@ -199,15 +218,13 @@ std::string sbatch_script(const SweepFolder& folder, const SlurmPlan& plan, std:
     << "#SBATCH --output=" << base << "/" << kSlurmDir << "/" << array.name << "_%A_%a.out\n"
     << "#SBATCH --ntasks=1\n"
     << "#SBATCH --cpus-per-task=" << o.cpus_per_task << "\n";
-  if (!o.partition.empty()) s << "#SBATCH --partition=" << o.partition << "\n";
-  if (!o.time.empty()) s << "#SBATCH --time=" << o.time << "\n";
+  placement_lines(s, o);
   if (!after.empty()) {
     // afterok on an array waits for every task of it; if one fails this array can never start,
     // and Slurm cancels it rather than leaving it pending forever.
     s << "#SBATCH --dependency=afterok:" << after << "\n"
       << "#SBATCH --kill-on-invalid-dep=yes\n";
   }
-  for (const auto& arg : o.sbatch_args) s << "#SBATCH " << arg << "\n";
   s << "exec " << shell_quote(o.binary) << " sweep . --run-job \"$SLURM_ARRAY_TASK_ID\" --job-list "
     << shell_quote(array.list) << "\n";
   return s.str();
@@ -229,8 +246,8 @@ void submit_slurm_plan(const SweepFolder& folder, SlurmPlan& plan, const SlurmOp
     write_task_list(folder.path(array.list), array.stage, array.tasks);
     write_file_atomic(folder.path(array.script).string(), sbatch_script(folder, plan, a, after, options));
     const CommandResult r = run_command({"sbatch", "--parsable", folder.path(array.script).string()});
-    std::string id = r.out.substr(0, r.out.find_first_of(";\n"));  // "id" or "id;cluster"
-    if (r.exit_code != 0 || id.empty() || id.find_first_not_of("0123456789") != std::string::npos) {
+    const std::string id = parsed_job_id(r);
+    if (id.empty()) {
       std::string message = "sbatch failed for the " + array.name + " array: " +
                             first_line(r.err.empty() ? r.out : r.err);
       if (record["arrays"].empty()) {
@@ -254,6 +271,45 @@ void submit_slurm_plan(const SweepFolder& folder, SlurmPlan& plan, const SlurmOp
                                 {"list", array.list}});
   }
   save();
+}
+
+std::string submit_slurm_follow_up(const SweepFolder& folder, const SlurmPlan& plan, const std::string& name,
+                                   const std::vector<std::string>& arguments, const SlurmOptions& o) {
+  std::string after, command = "exec " + shell_quote(o.binary);
+  for (const SlurmArray& a : plan.arrays) after += (after.empty() ? "" : ":") + a.job_id;
+  for (const std::string& argument : arguments) command += " " + shell_quote(argument);
+  const std::string base = absolute_folder(folder), script = plan.submission + "/" + name + ".sbatch";
+  std::ostringstream s;
+  s << "#!/bin/bash\n"
+    << "# rapid sweep " << folder.grid.name << ", " << name << ": runs once every array of " << plan.submission
+    << " has ended, whatever their outcome (written by `rapid sweep --backend slurm`).\n"
+    << "#SBATCH --job-name=rapid-" << folder.grid.name << "-" << name << "\n"
+    << "#SBATCH --chdir=" << base << "\n"
+    << "#SBATCH --output=" << base << "/" << kSlurmDir << "/" << name << "_%j.out\n"
+    << "#SBATCH --ntasks=1\n"
+    << "#SBATCH --cpus-per-task=1\n";
+  placement_lines(s, o);
+  if (!after.empty()) s << "#SBATCH --dependency=afterany:" << after << "\n";
+  s << command << "\n";
+  fs::create_directories(folder.path(plan.submission));
+  write_file_atomic(folder.path(script).string(), s.str());
+  const CommandResult r = run_command({"sbatch", "--parsable", folder.path(script).string()});
+  const std::string id = parsed_job_id(r);
+  if (id.empty())
+    throw SlurmError("sbatch failed for " + name + ": " + first_line(r.err.empty() ? r.out : r.err) +
+                     " (the arrays of " + plan.submission + " stay submitted)");
+  nlohmann::json submissions = read_submissions(folder);
+  nlohmann::json* record = nullptr;
+  for (auto& sub : submissions["submissions"])
+    if (sub.value("folder", "") == plan.submission) record = &sub;
+  if (!record) {
+    submissions["submissions"].push_back({{"submitted", utc_now_iso8601()}, {"folder", plan.submission}, {"arrays", nlohmann::json::array()}});
+    record = &submissions["submissions"].back();
+  }
+  (*record)["arrays"].push_back({{"stage", name}, {"name", name}, {"job_id", id}, {"tasks", 1},
+                                 {"after", after.empty() ? nlohmann::json(nullptr) : nlohmann::json(after)}});
+  write_file_atomic(folder.path(kSubmissions).string(), submissions.dump(1));
+  return id;
 }
 
 std::vector<std::string> queued_slurm_jobs(const SweepFolder& folder) {

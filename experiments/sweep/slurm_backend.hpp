@@ -79,6 +79,15 @@ std::string sbatch_script(const SweepFolder& folder, const SlurmPlan& plan, std:
 // if sbatch fails; arrays submitted before the failure stay submitted (the message names them).
 void submit_slurm_plan(const SweepFolder& folder, SlurmPlan& plan, const SlurmOptions& options);
 
+// After submit_slurm_plan: one more job, in the same submission, that waits for every array of
+// `plan` to end whatever their outcome (afterany) and then runs `rapid <arguments>` in the sweep
+// folder, e.g. `rapid sweep . --decide-step` for --decide's next look. Its script is
+// slurm/<submission>/<name>.sbatch, its output slurm/<name>_<job id>.out; it is recorded in
+// submissions.json like an array (so a submission while it is queued is refused). Returns its job
+// id. Throws SlurmError if sbatch fails (the arrays stay submitted; the message says so).
+std::string submit_slurm_follow_up(const SweepFolder& folder, const SlurmPlan& plan, const std::string& name,
+                                   const std::vector<std::string>& arguments, const SlurmOptions& options);
+
 // Job ids of arrays submitted to this folder earlier that squeue still lists (pending or
 // running): submitting again while they are queued would run jobs twice. Throws SlurmError if
 // squeue cannot be run.

@@ -28,6 +28,11 @@ void write_executable(const fs::path& path, const std::string& text) {
   fs::permissions(path, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec);
 }
 
+
+nlohmann::json read_json(const fs::path& path) { return nlohmann::json::parse(slurp(path)); }
+
+}  // namespace
+
 // Runs a shell command line; returns its stdout and sets `exit_code`.
 std::string capture(const std::string& command, int& exit_code) {
   FILE* pipe = ::popen(command.c_str(), "r");
@@ -42,10 +47,6 @@ std::string capture(const std::string& command, int& exit_code) {
   exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return out;
 }
-
-nlohmann::json read_json(const fs::path& path) { return nlohmann::json::parse(slurp(path)); }
-
-}  // namespace
 
 FakeSlurm::FakeSlurm(const fs::path& dir) : bin_(dir) {
   fs::create_directories(bin_);

@@ -33,6 +33,9 @@ class FakeSlurm {
   std::string old_path_;
 };
 
+// Runs a shell command line; returns its stdout and sets `exit_code`.
+std::string capture(const std::string& command, int& exit_code);
+
 // Whether the tests against a real Slurm should run: RAPID_SLURM_TESTS=1 (scripts/test-slurm sets
 // it) and sinfo lists a node that can take jobs. `why` says why not.
 bool slurm_available(std::string& why);

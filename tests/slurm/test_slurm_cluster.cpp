@@ -8,8 +8,11 @@
 //  - A failed reference agent stops its scenario's later arrays (afterok) and nothing else: the
 //    other scenario and the cells that need no dataset run; status shows the failure and the
 //    blocked jobs, and the next submission runs everything that is left.
+//  - --decide runs its looks as follow-up jobs, to the same looks, records and decisions as the
+//    local backend's --decide, and refreshes the reports when the looks stop.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <fstream>
 
@@ -56,6 +59,25 @@ class SlurmCluster : public ::testing::Test {
     if (at == std::string::npos) return "";
     const std::string id = submission.output.substr(at + name.size() + 8, submission.output.find(',', at) - at - name.size() - 8);
     return slurp(sweep / "slurm" / (name + "_" + id + "_0.out"));
+  }
+
+  // Every job a submission to `sweep` recorded, follow-ups included, until none is queued and
+  // decide.json says the looks stopped; false on timeout.
+  static bool wait_for_decide(const fs::path& sweep, double timeout_s) {
+    const auto start = std::chrono::steady_clock::now();
+    const auto submitted = [&] {
+      std::vector<std::string> ids;
+      const json submissions = read_json(sweep / "slurm/submissions.json");
+      for (const json& submission : submissions["submissions"])
+        for (const json& a : submission["arrays"]) ids.push_back(a["job_id"].get<std::string>());
+      return ids;
+    };
+    for (;;) {
+      const std::vector<std::string> ids = submitted();
+      const double left = timeout_s - std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (left <= 0 || !wait_for_jobs(ids, left)) return false;
+      if (submitted() == ids && read_json(sweep / "decide.json").contains("stopped")) return true;
+    }
   }
 
   testing::ScratchDir dir_;
@@ -163,6 +185,46 @@ TEST_F(SlurmCluster, AFailedReferenceStopsOnlyItsScenarioUntilTheNextSubmission)
   const Result second = submit_and_wait(grid, sweep);
   EXPECT_NE(second.output.find("submitted 3 jobs to Slurm (5 already done)"), std::string::npos) << second.output;
   EXPECT_EQ(status(sweep)["counts"]["ok"], 8) << status(sweep).dump(1);
+}
+
+TEST_F(SlurmCluster, DecideRunsItsLooksAsFollowUpJobsAsTheLocalBackendDoes) {
+  json g = pendulum_grid("decide", {"rapid-rl", "ddpg"}, {0, 1}, 400);
+  g["profile"] = "short";
+  const fs::path grid = dir_.path() / "decide.json", local = dir_.path() / "local", slurm = dir_.path() / "slurm";
+  write_json(grid, g);
+  const std::string decide = " --no-animations --decide --max-seeds 4 --block 1 --out ";
+  const Result l = run_rapid("sweep " + grid.string() + " --jobs 2" + decide + local.string());
+  ASSERT_EQ(l.exit_code, 0) << l.output;
+
+  const Result s = run_rapid("sweep " + grid.string() + " --backend slurm --array-parallelism 2" + decide + slurm.string());
+  ASSERT_EQ(s.exit_code, 0) << s.output;
+  EXPECT_NE(s.output.find("the looks of --decide follow in job "), std::string::npos) << s.output;
+  ASSERT_TRUE(wait_for_decide(slurm, kTimeoutS)) << "the looks did not finish in time";
+
+  const json local_plan = read_json(local / "decide.json"), slurm_plan = read_json(slurm / "decide.json");
+  EXPECT_EQ(slurm_plan["looks"], local_plan["looks"]);
+  EXPECT_EQ(slurm_plan["stopped"], local_plan["stopped"]);
+  EXPECT_EQ(read_json(slurm / "grid.json")["seeds"], read_json(local / "grid.json")["seeds"]);
+  const auto local_records = comparable_run_records(local, slurm);
+  const auto slurm_records = comparable_run_records(slurm, local);
+  EXPECT_EQ(slurm_records.size(), local_records.size());
+  for (const auto& [path, record] : local_records) {
+    ASSERT_TRUE(slurm_records.count(path)) << path;
+    EXPECT_EQ(slurm_records.at(path), record) << path;
+  }
+  // The last follow-up refreshed the reports: the same decisions, at alpha over the same looks.
+  int code = 0;
+  ASSERT_TRUE(fs::exists(slurm / "summary.json")) << capture("squeue -a -l 2>&1", code) << slurm_plan.dump(1)
+                                                  << read_json(slurm / "slurm/submissions.json").dump(1);
+  EXPECT_EQ(read_json(slurm / "summary.json")["decisions"], read_json(local / "summary.json")["decisions"]);
+
+  // Again: the looks replay from the records and nothing is submitted.
+  const std::size_t submissions = read_json(slurm / "slurm/submissions.json")["submissions"].size();
+  const Result again = run_rapid("sweep " + grid.string() + " --backend slurm" + decide + slurm.string());
+  EXPECT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("nothing to submit"), std::string::npos) << again.output;
+  EXPECT_EQ(read_json(slurm / "slurm/submissions.json")["submissions"].size(), submissions);
+  EXPECT_EQ(read_json(slurm / "decide.json")["looks"], local_plan["looks"]);
 }
 
 }  // namespace

@@ -3,6 +3,9 @@
 // command again runs nothing new (the looks are a function of the records).
 #include <gtest/gtest.h>
 
+#include <sstream>
+
+#include "experiments/cli/sweep_decide.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
 #include "tests/sweep/sweep_test_util.hpp"
 
@@ -50,6 +53,56 @@ TEST(Decide, AddsBlocksOfSeedsToUndecidedCellsAndResumesWithoutRerunning) {
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.output.find("--max-seeds: 2 is below the grid's 3 seeds"), std::string::npos) << bad.output;
   EXPECT_FALSE(fs::exists(dir.path() / "x"));
+}
+
+// A scheduler (the Slurm backend) takes a look's jobs and the looks go on in a later process: that
+// process must pass the looks whose jobs are done, hand on exactly the next block, and stop rather
+// than hand the same look on again when its jobs ran and failed; the user's next --decide does.
+TEST(Decide, ALookWhoseSubmittedJobsFailedStopsTheLooksUntilTheUserStartsThemAgain) {
+  testing::ScratchDir dir;
+  const fs::path grid_file = dir.path() / "g.json", sweep = dir.path() / "sweep";
+  nlohmann::json g = pendulum_grid("g", {"rapid-rl", "ddpg"}, {0, 1}, 400);
+  g["profile"] = "short";
+  write_json(grid_file, g);
+  const Result r = run_rapid("sweep " + grid_file.string() + " --jobs 2 --no-summary --out " + sweep.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const DecideSettings settings{.block = 2, .max_seeds = 6};
+  const Grid grid = load_grid(grid_file.string());
+  start_decide(sweep, grid, settings);
+
+  std::vector<Selection> handed;
+  const RunLookJobs scheduler = [&](const SweepFolder& folder, const Selection& selection) {
+    handed.push_back(selection);
+    EXPECT_EQ(folder.grid.seeds, (std::vector<std::uint64_t>{0, 1, 2, 3}));
+    return LookJobs::kSubmitted;
+  };
+  std::ostringstream log;
+  EXPECT_EQ(advance_decide(sweep, settings, scheduler, log), DecideState::kWaiting) << log.str();
+  ASSERT_EQ(handed.size(), 1u);
+  EXPECT_EQ(handed[0].cells, (std::set<std::string>{"pendulum/initial/rapid-rl", "pendulum/none/ddpg"}));
+  EXPECT_EQ(handed[0].seeds, (std::set<std::uint64_t>{2, 3}));
+  EXPECT_EQ(read_json(sweep / "decide.json")["submitted_look"], 0);
+  EXPECT_EQ(read_json(sweep / "grid.json")["seeds"], nlohmann::json({0, 1, 2, 3}));
+
+  // The scheduler's follow-up: the look's jobs never became ok.
+  EXPECT_EQ(advance_decide(sweep, settings, scheduler, log), DecideState::kFailed) << log.str();
+  EXPECT_EQ(handed.size(), 1u);
+  const nlohmann::json plan = read_json(sweep / "decide.json");
+  ASSERT_TRUE(plan.contains("stopped"));
+  EXPECT_NE(plan["stopped"].get<std::string>().find("look 0: seeds 2-3 for 2 cells of undecided comparisons did not all end ok"),
+            std::string::npos)
+      << plan.dump();
+
+  // The user's command again: the look is handed on once more.
+  start_decide(sweep, grid, settings);
+  EXPECT_EQ(advance_decide(sweep, settings, scheduler, log), DecideState::kWaiting) << log.str();
+  EXPECT_EQ(handed.size(), 2u);
+
+  // A follow-up without a plan to follow is bad input for the hidden command.
+  fs::remove(sweep / "decide.json");
+  const Result step = run_rapid("sweep " + sweep.string() + " --decide-step");
+  EXPECT_EQ(step.exit_code, 2);
+  EXPECT_NE(step.output.find("--decide-step: "), std::string::npos) << step.output;
 }
 
 }  // namespace
