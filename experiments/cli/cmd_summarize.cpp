@@ -1,5 +1,7 @@
 // `rapid summarize SWEEP_DIR`: Table I (table.md, table.tex, table.csv), summary.json and
-// claims.md from a sweep's run records, then Figures 2–3 through scripts/plot (docs/reports.md).
+// claims.md from a sweep's run records, then Figures 2–3 through scripts/plot, then report.html
+// from all of them (docs/reports.md). `--html-only` remakes report.html alone from a reports
+// folder's files, for the committed results/* folders whose records are not in git.
 #include <filesystem>
 #include <iostream>
 
@@ -8,6 +10,7 @@
 #include "experiments/cli/output_folder.hpp"
 #include "experiments/report/animations.hpp"
 #include "experiments/report/interruption.hpp"
+#include "experiments/report/report_page.hpp"
 #include "experiments/report/summarize.hpp"
 #include "experiments/report/write_reports.hpp"
 #include "experiments/sweep/attempt.hpp"  // signal_name
@@ -24,7 +27,32 @@ struct SummarizeOptions {
   bool no_plots = false;
   bool no_animations = false;
   bool force = false;
+  bool html_only = false;
 };
+
+void say_page_written(const fs::path& report_dir, std::uintmax_t bytes) {
+  std::cout << "wrote " << (report_dir / kReportPage).string() << " (" << (bytes + 512) / 1024 << " kB)\n";
+}
+
+// report.html after the other reports, from what they left in the folder. Its failure fails the
+// command (exit 1), as a failing plot script does; the other reports are written by then.
+bool write_page_after_reports(const fs::path& report_dir, const fs::path& sweep_dir) {
+  try {
+    say_page_written(report_dir, write_report_page(report_dir, sweep_dir));
+    return true;
+  } catch (const std::exception& e) {
+    std::cerr << "rapid summarize: report.html not written: " << e.what() << "\n";
+    return false;
+  }
+}
+
+// `--html-only DIR`: DIR's summary.json, runs.csv, figures and grid.json are the input; a
+// missing or broken one is bad input (exit 2), and no other file is touched.
+int write_page_only(const std::string& dir) {
+  const std::uintmax_t bytes = check_option("SWEEP_DIR", [&] { return write_report_page(dir, dir); });
+  say_page_written(dir, bytes);
+  return kExitOk;
+}
 
 }  // namespace
 
@@ -43,12 +71,15 @@ int summarize_sweep(const std::string& sweep_dir, const std::string& out_dir, bo
   make_output_folder(out, out_dir.empty() ? "SWEEP_DIR" : "--out");
   write_reports(summary, out, std::cout);
   if (interrupted()) return kExitInterrupted;
-  if (!plots) return kExitOk;
-  const FiguresResult figures = draw_figures(out, std::cout);
-  if (interrupted()) return kExitInterrupted;
-  if (animations) write_animations(summary, out, std::cout);
-  if (interrupted()) return kExitInterrupted;
-  return figures == FiguresResult::kDone ? kExitOk : kExitFailed;
+  FiguresResult figures = FiguresResult::kDone;
+  if (plots) {
+    figures = draw_figures(out, std::cout);
+    if (interrupted()) return kExitInterrupted;
+    if (animations) write_animations(summary, out, std::cout);
+    if (interrupted()) return kExitInterrupted;
+  }
+  const bool page = write_page_after_reports(out, sweep_dir);
+  return figures == FiguresResult::kDone && page ? kExitOk : kExitFailed;
 }
 
 Command add_summarize_command(CLI::App& parent) {
@@ -56,11 +87,18 @@ Command add_summarize_command(CLI::App& parent) {
   CLI::App* sub = parent.add_subcommand(
       "summarize", "Write Table I (md, tex, csv), summary.json, claims.md and Figures 2-3 from a sweep folder");
   sub->add_option("sweep_dir", o->dir, "the sweep folder (results/<grid name>)")->required();
-  const CLI::Option* out = sub->add_option("--out", o->out, "write the reports here instead of into the sweep folder");
+  CLI::Option* out = sub->add_option("--out", o->out, "write the reports here instead of into the sweep folder");
   sub->add_flag("--no-plots", o->no_plots, "skip scripts/plot (figures and animations)");
   sub->add_flag("--no-animations", o->no_animations, "skip the best and worst cells' animations (docs/traces.md)");
-  sub->add_flag("--force", o->force, "write into an --out folder that holds other files (overwriting table.md, …)");
+  CLI::Option* force = sub->add_flag("--force", o->force, "write into an --out folder that holds other files (overwriting table.md, …)");
+  sub->add_flag("--html-only", o->html_only,
+                "only remake report.html from the folder's summary.json, runs.csv and figures (a committed reports folder)")
+      ->excludes(out)
+      ->excludes(force)
+      ->excludes("--no-plots")
+      ->excludes("--no-animations");
   return {sub, [o, out] {
+            if (o->html_only) return write_page_only(o->dir);
             // `--out ""` is a mistake, not a request for the default.
             if (out->count() > 0 && o->out.empty()) throw UsageError("--out: must name a folder, got an empty path");
             return summarize_sweep(o->dir, o->out, !o->no_plots, !o->no_animations, o->force);

@@ -37,6 +37,18 @@ int table_decimals(double magnitude) {
   return 3;
 }
 
+std::string seed_count_note(int n_ok, int n_expected) {
+  return "(n=" + std::to_string(n_ok) + "/" + std::to_string(n_expected) + ")";
+}
+
+std::string table_cell_text(std::optional<double> mean, std::optional<double> std, int n_ok, int n_expected,
+                            int decimals, const std::string& pm, const std::string& dash) {
+  if (!mean) return dash + " " + seed_count_note(n_ok, n_expected);
+  std::string text = fixed(*mean, decimals) + pm + fixed(std.value_or(0.0), decimals);
+  if (n_ok < n_expected) text += " " + seed_count_note(n_ok, n_expected);
+  return text;
+}
+
 namespace {
 std::string lookup(const std::map<std::string, std::string>& names, const std::string& key) {
   const auto it = names.find(key);

@@ -18,6 +18,13 @@ std::string exact_number(std::optional<double> x);
 // 1, else 3, so small-scale returns (pendulum, smoke runs) still show their differences.
 int table_decimals(double magnitude);
 
+// "(n=2/3)": a cell's ok seeds of its expected ones.
+std::string seed_count_note(int n_ok, int n_expected);
+// A Table I cell: "mean ± std", with seed_count_note when seeds are short, or the dash and the
+// note without an ok seed; `pm` and `dash` are the format's spelling of ± and — (Markdown, HTML).
+std::string table_cell_text(std::optional<double> mean, std::optional<double> std, int n_ok, int n_expected,
+                            int decimals, const std::string& pm, const std::string& dash);
+
 // Display names as the paper prints them: "RAPID-RL", "CoL-prior", "Final+Medium", "Lane-drop";
 // an algorithm's comes from its registry row (algos/registry.cpp).
 std::string algo_display_name(const std::string& algo);

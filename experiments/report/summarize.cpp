@@ -68,6 +68,7 @@ CellSummary summarize_cell(const SweepFolder& folder, const std::vector<const Sw
     cell.statuses[loaded.result.status] += 1;
     if (loaded.result.final_return) cell.finals.push_back(*loaded.result.final_return);
     if (loaded.record) {
+      summary.provenance.add(*loaded.record);
       loaded.result.eval = eval_points(*loaded.record);
       loaded.result.bc_loss = bc_loss_points(*loaded.record);
       records.push_back(std::move(*loaded.record));

@@ -20,6 +20,7 @@
 
 #include "core/hypothesis_tests.hpp"
 #include "core/statistics.hpp"
+#include "experiments/report/run_provenance.hpp"
 #include "experiments/sweep/grid.hpp"
 
 namespace rapid {
@@ -197,6 +198,7 @@ struct Summary {
   std::vector<ClaimResult> claims;
   std::optional<Decisions> decisions;  // where the profile has a decision rule
   std::vector<std::string> warnings;  // printed by `rapid summarize`
+  RunProvenance provenance;           // of the ok records
 
   const CellSummary* find(const std::string& scenario, const std::string& dataset, const std::string& algo) const;
   // The cell shown in a row's column: the dataset's cell, or the scenario's ddpg cell.

@@ -26,19 +26,10 @@ int decimals_for(const Summary& s) {
   return table_decimals(magnitude);
 }
 
-std::string count_note(const CellSummary& c) {
-  return "(n=" + std::to_string(c.n_ok) + "/" + std::to_string(c.n_expected) + ")";
-}
+std::string count_note(const CellSummary& c) { return seed_count_note(c.n_ok, c.n_expected); }
 
-// "mean ± std", with the seed count when seeds are missing; `pm` and `dash` are the format's
-// spelling of ± and —.
-std::string cell_text(const CellSummary* c, int decimals, const std::string& pm, const std::string& dash,
-                      const std::string& note_prefix = " ", const std::string& note_suffix = "") {
-  if (!c) return "";
-  if (!c->mean) return dash + note_prefix + count_note(*c) + note_suffix;
-  std::string text = fixed(*c->mean, decimals) + pm + fixed(*c->std, decimals);
-  if (c->n_ok < c->n_expected) text += note_prefix + count_note(*c) + note_suffix;
-  return text;
+std::string cell_text(const CellSummary* c, int decimals, const std::string& pm, const std::string& dash) {
+  return c ? table_cell_text(c->mean, c->std, c->n_ok, c->n_expected, decimals, pm, dash) : "";
 }
 
 int total_expected(const Summary& s) {

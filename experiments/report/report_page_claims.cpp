@@ -1,0 +1,102 @@
+// report.html's claims: the decided verdicts (docs/decisions.md) where summary.json has them,
+// then the paper's claims with the point-mean verdict, the exact rule checked, the reason and the
+// numbers behind it, as claims.md has them.
+#include "experiments/report/format.hpp"
+#include "experiments/report/html_text.hpp"
+#include "experiments/report/report_page_sections.hpp"
+
+namespace rapid::report_page {
+
+namespace {
+
+std::string verdict_cell(const std::string& verdict) {
+  std::string css;
+  for (const char c : verdict) css += (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : (c == '/' ? '-' : c);
+  return "<td class=\"verdict verdict-" + html_escape(css) + "\">" + html_escape(verdict) + "</td>";
+}
+
+std::string statement_of(const nlohmann::json& claims, const std::string& id) {
+  for (const nlohmann::json& c : claims)
+    if (c.value("id", "") == id) return c.value("statement", "");
+  return "";
+}
+
+std::string p_text(const nlohmann::json& p) {
+  const std::optional<double> x = number(p);
+  return x ? short_number(x) : "—";
+}
+
+std::string decided(const nlohmann::json& summary) {
+  if (!summary.contains("decisions")) return "";
+  const nlohmann::json& d = summary["decisions"];
+  const nlohmann::json claims = summary.value("claims", nlohmann::json::array());
+  std::string html =
+      "<h3>Decided verdicts</h3>\n<p>Each comparison tested on the per-seed numbers (Welch's t test for a difference, "
+      "TOST for equivalence within ±δ), all " +
+      std::to_string(d.value("family_size", 0)) + " hypotheses under Holm's procedure at α = " +
+      short_number(number(d.value("alpha_per_look", nlohmann::json()))) + "; δ: " +
+      html_escape(d.value("delta_rule", "")) +
+      ".</p>\n<table class=\"claims\" id=\"decided-claims\"><thead><tr><th>Claim</th><th>Statement</th><th>Verdict</th>"
+      "<th>Reason</th></tr></thead><tbody>\n";
+  for (const nlohmann::json& c : d.value("claims", nlohmann::json::array()))
+    html += "<tr><td>" + html_escape(c.value("id", "")) + "</td><td>" +
+            html_escape(statement_of(claims, c.value("id", ""))) + "</td>" + verdict_cell(c.value("verdict", "")) +
+            "<td>" + html_escape(c.value("reason", "")) + "</td></tr>\n";
+  html += "</tbody></table>\n<details><summary>The comparisons</summary>\n<table class=\"numbers\"><thead><tr><th>#</th>"
+          "<th>Where</th><th>Metric</th><th>X vs Y</th><th>X − Y</th><th>p (difference)</th><th>p (equivalence)</th>"
+          "<th>Outcome</th><th>Wanted</th><th>Seeds needed</th></tr></thead><tbody>\n";
+  std::size_t index = 0;
+  for (const nlohmann::json& c : d.value("comparisons", nlohmann::json::array())) {
+    const nlohmann::json needed = c.value("seeds_needed", nlohmann::json());
+    html += "<tr><td>" + std::to_string(index++) + "</td><td>" + html_escape(c.value("where", "")) + "</td><td>" +
+            html_escape(c.value("metric", "")) + "</td><td>" + html_escape(c.value("x", "")) + " vs " +
+            html_escape(c.value("y", "")) + "</td><td>" + short_number(number(c.value("difference", nlohmann::json()))) +
+            "</td><td>" + p_text(c.value("p_difference", nlohmann::json())) + "</td><td>" +
+            p_text(c.value("p_equivalence", nlohmann::json())) + "</td><td>" + html_escape(c.value("outcome", "")) +
+            "</td><td>" + html_escape(c.value("wanted", "")) + "</td><td>" + (needed.is_number() ? needed.dump() : "—") +
+            "</td></tr>\n";
+  }
+  return html + "</tbody></table></details>\n";
+}
+
+std::string claim_numbers(const nlohmann::json& c) {
+  const nlohmann::json header = c.value("header", nlohmann::json::array());
+  if (header.empty()) return "";
+  std::string html = "<table class=\"numbers\"><thead><tr>";
+  for (const nlohmann::json& h : header) html += "<th>" + html_escape(h.get<std::string>()) + "</th>";
+  html += "</tr></thead><tbody>\n";
+  for (const nlohmann::json& row : c.value("rows", nlohmann::json::array())) {
+    html += "<tr>";
+    for (const nlohmann::json& x : row) html += "<td>" + html_escape(x.is_string() ? x.get<std::string>() : x.dump()) + "</td>";
+    html += "</tr>\n";
+  }
+  return html + "</tbody></table>\n";
+}
+
+std::string point_mean(const nlohmann::json& summary) {
+  const nlohmann::json claims = summary.value("claims", nlohmann::json::array());
+  if (claims.empty()) return "<p>This summary has no claims check.</p>\n";
+  std::string html = "<h3>Point-mean verdicts" + std::string(summary.contains("decisions") ? " (not a decision)" : "") +
+                     "</h3>\n<p>Each claim checked on the seed means as stated; N/A where the grid does not hold what "
+                     "the claim is about. Open a claim for the rule and its numbers.</p>\n"
+                     "<table class=\"claims\" id=\"point-mean-claims\"><thead><tr><th>Claim</th><th>Statement</th>"
+                     "<th>Verdict</th><th>Reason</th></tr></thead><tbody>\n";
+  for (const nlohmann::json& c : claims)
+    html += "<tr><td>" + html_escape(c.value("id", "")) + "</td><td>" + html_escape(c.value("statement", "")) + "</td>" +
+            verdict_cell(c.value("verdict", "")) + "<td>" + html_escape(c.value("reason", "")) + "</td></tr>\n";
+  html += "</tbody></table>\n";
+  for (const nlohmann::json& c : claims)
+    html += "<details class=\"claim\"><summary>" + html_escape(c.value("id", "")) + ": " +
+            html_escape(c.value("statement", "")) + "</summary>\n<p><strong>Checked:</strong> " +
+            html_escape(c.value("definition", "")) + "</p>\n" + claim_numbers(c) + "</details>\n";
+  return html;
+}
+
+}  // namespace
+
+std::string claims_section(const ReportFolder& folder) {
+  return "<section id=\"claims\"><h2>The paper's claims</h2>\n" + decided(folder.summary) + point_mean(folder.summary) +
+         "</section>\n";
+}
+
+}  // namespace rapid::report_page

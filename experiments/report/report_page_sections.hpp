@@ -1,0 +1,32 @@
+// The sections of report.html (report_page.hpp), one function each, and what they share. Every
+// function returns HTML text; none reads a file (report_folder.hpp did).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "experiments/report/report_folder.hpp"
+
+namespace rapid::report_page {
+
+std::string provenance_section(const ReportFolder& folder);
+std::string tables_section(const ReportFolder& folder);   // Table I, P(improvement), IQM
+std::string claims_section(const ReportFolder& folder);   // decided and point-mean verdicts
+std::string figures_section(const ReportFolder& folder);  // Figures 2, 3(a), 3(b), sensitivity, animations
+std::string cells_section(const ReportFolder& folder);    // the drill-down per cell
+
+// A JSON number as a double; nullopt for null (summary.json's "cannot exist") or anything else.
+std::optional<double> number(const nlohmann::json& j);
+// The decimals of Table I (table_decimals of the largest |mean|), so every section agrees with it.
+int table_decimals_of(const nlohmann::json& summary);
+// The id of a cell's drill-down: "cell-<its index in summary.json's cells>".
+std::string cell_anchor(std::size_t index);
+// "[lo, hi]" of a summary.json interval, "—" for null.
+std::string interval_text(const nlohmann::json& ci, int decimals);
+// "scenario / dataset" rows as the tables name them; DDPG's dataset is "—".
+std::string row_label(const std::string& scenario, const nlohmann::json& dataset);
+// "epsilon = 0.3, lambda_bc = 10" from an axis object; empty for none.
+std::string axis_text(const nlohmann::json& axis);
+
+}  // namespace rapid::report_page

@@ -1,0 +1,132 @@
+// report.html's tables: Table I, the probability that RAPID-RL beats each baseline, the IQM per
+// algorithm. Each numeric cell carries its exact value in data-sort (what the page sorts by and
+// what tests/browser compares with summary.json); the text is formatted as table.md has it.
+#include <algorithm>
+#include <map>
+
+#include "algos/registry.hpp"
+#include "experiments/report/format.hpp"
+#include "experiments/report/html_text.hpp"
+#include "experiments/report/report_page_sections.hpp"
+
+namespace rapid::report_page {
+
+namespace {
+
+std::string sort_value(std::optional<double> x) { return " data-sort=\"" + exact_number(x) + "\""; }
+
+std::string header(const std::vector<std::string>& names) {
+  std::string html = "<thead><tr>";
+  for (const std::string& n : names) html += "<th scope=\"col\">" + n + "</th>";
+  return html + "</tr></thead>\n";
+}
+
+// The grid's algorithms in the registry's order: Table I's columns.
+std::vector<std::string> table_columns(const nlohmann::json& summary) {
+  const nlohmann::json algos = summary["grid"].value("algos", nlohmann::json::array());
+  std::vector<std::string> out;
+  for (const std::string& a : algo_names())
+    if (std::find(algos.begin(), algos.end(), a) != algos.end()) out.push_back(a);
+  return out;
+}
+
+std::string table_i(const ReportFolder& folder) {
+  const nlohmann::json& s = folder.summary;
+  const int decimals = table_decimals_of(s);
+  std::map<std::string, std::size_t> index_of;  // cell key → index in summary.json's cells
+  for (std::size_t i = 0; i < s["cells"].size(); ++i) index_of[cell_key(s["cells"][i], folder.sweep.grid)] = i;
+  const bool axes = !folder.sweep.grid.axes.empty();
+  const std::vector<std::string> algos = table_columns(s);
+
+  std::vector<std::string> names = {"Scenario", "Dataset"};
+  if (axes) names.push_back("Axes");
+  for (const std::string& a : algos) names.push_back(html_escape(algo_display_name(a)));
+  std::string html = "<table class=\"sortable numbers\" id=\"table-i-cells\">" + header(names) + "<tbody>\n";
+  std::size_t order = 0;
+  for (const nlohmann::json& row : s.value("table", nlohmann::json::array())) {
+    html += "<tr data-order=\"" + std::to_string(order++) + "\"><td>" +
+            html_escape(scenario_display_name(row.value("scenario", ""))) + "</td><td>" +
+            html_escape(dataset_display_name(row.value("dataset", ""))) + "</td>";
+    if (axes) html += "<td>" + html_escape(axis_text(row.value("axis", nlohmann::json()))) + "</td>";
+    for (const std::string& algo : algos) {
+      const auto column = std::find_if(row["columns"].begin(), row["columns"].end(),
+                                       [&](const nlohmann::json& c) { return c.value("algo", "") == algo; });
+      const auto index = column == row["columns"].end() ? index_of.end() : index_of.find(column->value("cell", ""));
+      if (index == index_of.end()) {
+        html += "<td data-sort=\"\"></td>";
+        continue;
+      }
+      const nlohmann::json& cell = s["cells"][index->second];
+      const std::optional<double> mean = number(cell["mean"]);
+      const bool best = row.value("best", nlohmann::json()) == algo;
+      html += "<td class=\"cell" + std::string(best ? " best" : "") + "\" data-cell=\"" + html_escape(index->first) + "\"" +
+              sort_value(mean) + "><a href=\"#" + cell_anchor(index->second) + "\">" +
+              html_escape(table_cell_text(mean, number(cell["std"]), cell.value("n_ok", 0), cell.value("n_expected", 0),
+                                          decimals, " ± ", "—")) +
+              "</a></td>";
+    }
+    html += "</tr>\n";
+  }
+  return html + "</tbody></table>\n";
+}
+
+std::string poi_table(const ReportFolder& folder) {
+  const nlohmann::json entries = folder.summary.value("probability_of_improvement", nlohmann::json::array());
+  if (entries.empty()) return "<p>No row has RAPID-RL and another algorithm, so there is nothing to compare.</p>\n";
+  const bool points = std::any_of(entries.begin(), entries.end(), [](const nlohmann::json& e) { return e.contains("point"); });
+  std::vector<std::string> names = {"Scenario", "Dataset"};
+  if (points) names.push_back("Axes");
+  names.insert(names.end(), {"Comparison", "P", "95% interval", "n"});
+  std::string html = "<table class=\"sortable numbers\" id=\"poi-table\">" + header(names) + "<tbody>\n";
+  std::size_t order = 0;
+  for (const nlohmann::json& e : entries) {
+    const std::optional<double> p = number(e.value("p", nlohmann::json()));
+    html += "<tr data-order=\"" + std::to_string(order++) + "\"><td>" +
+            html_escape(scenario_display_name(e.value("scenario", ""))) + "</td><td>" +
+            html_escape(dataset_display_name(e.value("dataset", ""))) + "</td>";
+    if (points) html += "<td>" + html_escape(e.value("point", "")) + "</td>";
+    html += "<td>" + html_escape(algo_display_name(e.value("algo", ""))) + " &gt; " +
+            html_escape(algo_display_name(e.value("baseline", ""))) + "</td><td class=\"p\"" + sort_value(p) + ">" +
+            (p ? fixed(*p, 2) : "—") + "</td><td>" + interval_text(e.value("ci", nlohmann::json()), 2) + "</td><td>" +
+            std::to_string(e.value("n_x", 0)) + " vs " + std::to_string(e.value("n_y", 0)) + "</td></tr>\n";
+  }
+  return html + "</tbody></table>\n";
+}
+
+std::string iqm_table(const ReportFolder& folder) {
+  const nlohmann::json entries = folder.summary.value("aggregate_iqm", nlohmann::json::array());
+  if (entries.empty()) return "";
+  const int decimals = table_decimals_of(folder.summary);
+  std::string html =
+      "<h3>IQM over all cells</h3>\n<p>Interquartile mean of every ok run of an algorithm, pooled over its cells "
+      "(95% stratified-bootstrap interval). Returns are not normalised across scenarios: read it next to Table I.</p>\n"
+      "<table class=\"sortable numbers\" id=\"iqm-table\">" +
+      header({"Algorithm", "IQM", "95% interval", "Runs", "Cells"}) + "<tbody>\n";
+  std::size_t order = 0;
+  for (const nlohmann::json& e : entries) {
+    const std::optional<double> iqm = number(e.value("iqm", nlohmann::json()));
+    html += "<tr data-order=\"" + std::to_string(order++) + "\"><td>" + html_escape(algo_display_name(e.value("algo", ""))) +
+            "</td><td" + sort_value(iqm) + ">" + (iqm ? fixed(*iqm, decimals) : "—") + "</td><td>" +
+            interval_text(e.value("ci", nlohmann::json()), decimals) + "</td><td data-sort=\"" +
+            std::to_string(e.value("n_runs", 0)) + "\">" + std::to_string(e.value("n_runs", 0)) + "</td><td data-sort=\"" +
+            std::to_string(e.value("n_cells", 0)) + "\">" + std::to_string(e.value("n_cells", 0)) + "</td></tr>\n";
+  }
+  return html + "</tbody></table>\n";
+}
+
+}  // namespace
+
+std::string tables_section(const ReportFolder& folder) {
+  return "<section id=\"table-i\"><h2>Table I: final return</h2>\n<p>Mean ± population std over the ok seeds of each "
+         "run's final return; <code>(n=ok/expected)</code> when seeds are short, — without an ok seed. The best mean of a "
+         "row is <strong>bold</strong>. DDPG takes no dataset: its cell repeats in every dataset row. Click a column "
+         "header to sort by it (again to reverse), a cell for its seeds.</p>\n" +
+         table_i(folder) +
+         "</section>\n<section id=\"poi\"><h2>Probability of improvement</h2>\n<p>P(X &gt; Y) per row over the ok seeds: "
+         "Mann–Whitney U / (n<sub>X</sub>·n<sub>Y</sub>), ties count half; 95% interval from a stratified bootstrap. "
+         "RAPID-RL against each of the paper's baselines, and each variant the paper does not have against "
+         "RAPID-RL.</p>\n" +
+         poi_table(folder) + iqm_table(folder) + "</section>\n";
+}
+
+}  // namespace rapid::report_page

@@ -1,0 +1,132 @@
+// report.html (experiments/report/report_page.hpp) as `rapid summarize` writes it: on hand-made
+// sweeps with failed and missing seeds and a variant algorithm, on the committed results folders
+// (grids with axes, no records) through --html-only, byte for byte, and on bad input. The page in
+// a real browser: tests/browser (scripts/test-browser).
+#include <gtest/gtest.h>
+
+#include "tests/cli_runner.hpp"
+#include "tests/datasets/dataset_fixtures.hpp"
+#include "tests/reports/report_test_util.hpp"
+
+namespace rapid {
+namespace {
+
+namespace fs = std::filesystem;
+using test::rapid_cli;
+
+bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+class ReportPageTest : public ::testing::Test {
+ protected:
+  testing::ScratchDir scratch;
+  fs::path sweep = scratch.path() / "sweep";
+
+  // One scenario, RAPID-RL and its variant with two datasets, DDPG; seed 2 of rapid-rl/initial
+  // failed, seed 1 of ddpg never ran.
+  void SetUp() override {
+    nlohmann::json grid = report_test::make_grid("page", {"pendulum"}, {"initial", "final+medium"},
+                                                 {"rapid-rl", "rapid-rl-return", "ddpg"}, {0, 1, 2});
+    grid["config"]["return_horizon"] = 20;
+    report_test::write_grid(sweep, grid);
+    for (const std::string dataset : {"initial", "final+medium"})
+      for (const std::string algo : {"rapid-rl", "rapid-rl-return"})
+        for (std::uint64_t seed : {0u, 1u, 2u}) {
+          const bool failed = dataset == "initial" && algo == "rapid-rl" && seed == 2;
+          report_test::write_run(sweep, report_test::pendulum_run(dataset, algo, seed, 100.0 + 10 * seed,
+                                                                  failed ? "failed" : "ok"));
+        }
+    for (std::uint64_t seed : {0u, 2u}) report_test::write_run(sweep, report_test::pendulum_run("", "ddpg", seed, 50.0 + seed));
+  }
+  std::string summarize_page() {
+    const auto out = rapid_cli("summarize " + sweep.string() + " --no-plots", true);
+    EXPECT_EQ(out.exit_code, 0) << out.text;
+    EXPECT_TRUE(has(out.text, "report.html")) << out.text;
+    return report_test::read_text(sweep / "report.html");
+  }
+};
+
+TEST_F(ReportPageTest, ShowsEverySeedWithItsStatusAndItsRecord) {
+  const std::string page = summarize_page();
+  // Table I as table.md writes it, the short cells with their counts, the variant as a column.
+  EXPECT_TRUE(has(page, ">105.0 ± 5.0 (n=2/3)</a>")) << "rapid-rl/initial without its failed seed";
+  EXPECT_TRUE(has(page, ">51.0 ± 1.0 (n=2/3)</a>")) << "ddpg without its missing seed";
+  EXPECT_TRUE(has(page, "<th scope=\"col\">RAPID-RL (return)</th>"));
+  EXPECT_TRUE(has(page, "RAPID-RL (return) &gt; RAPID-RL")) << "the variant's probability of improvement";
+  // The drill-down: statuses, errors, links relative to the page, the curve of every ok seed.
+  EXPECT_TRUE(has(page, "status-failed\">failed</td>"));
+  EXPECT_TRUE(has(page, "training failed"));
+  EXPECT_TRUE(has(page, "status-missing\">missing</td>"));
+  EXPECT_TRUE(has(page, "<a href=\"jobs/pendulum/initial/rapid-rl/seed0/record.json\">record.json</a>"));
+  EXPECT_TRUE(has(page, "<code class=\"absent\" title=\"not in this folder\">jobs/pendulum/none/ddpg/seed1/record.json</code>"));
+  EXPECT_TRUE(has(page, "<polyline data-seed=\"1\"")) << "seed curves from runs.csv";
+  EXPECT_TRUE(has(page, "figure2: not drawn")) << "--no-plots: the page says the figures are missing";
+  // Nothing that changes between runs or machines, nothing fetched.
+  EXPECT_FALSE(has(page, scratch.path().string()));
+  EXPECT_FALSE(has(page, "https://"));
+  EXPECT_FALSE(has(page, "<link"));
+  const nlohmann::json summary = report_test::read_json(sweep / "summary.json");
+  EXPECT_EQ(summary["provenance"]["runs"], 13) << summary["provenance"];
+}
+
+TEST_F(ReportPageTest, RegeneratesByteForByteAndFromTheFolderAlone) {
+  const std::string first = summarize_page();
+  EXPECT_EQ(summarize_page(), first);
+  const auto out = rapid_cli("summarize " + sweep.string() + " --html-only", true);
+  ASSERT_EQ(out.exit_code, 0) << out.text;
+  EXPECT_EQ(report_test::read_text(sweep / "report.html"), first);
+}
+
+TEST_F(ReportPageTest, AReportsFolderElsewhereLinksBackToTheRecords) {
+  const auto out = rapid_cli("summarize " + sweep.string() + " --no-plots --out " + (scratch.path() / "reports").string(), true);
+  ASSERT_EQ(out.exit_code, 0) << out.text;
+  const std::string page = report_test::read_text(scratch.path() / "reports" / "report.html");
+  EXPECT_TRUE(has(page, "<a href=\"../sweep/jobs/pendulum/initial/rapid-rl/seed0/record.json\">record.json</a>"));
+}
+
+TEST_F(ReportPageTest, BadInputExitsTwoWithOneLineAndWritesNothing) {
+  const fs::path empty = scratch.path() / "empty";
+  fs::create_directories(empty);
+  auto out = rapid_cli("summarize " + empty.string() + " --html-only", true);
+  EXPECT_EQ(out.exit_code, 2) << out.text;
+  EXPECT_TRUE(has(out.text, "summary.json")) << out.text;
+  EXPECT_EQ(std::count(out.text.begin(), out.text.end(), '\n'), 1) << out.text;
+  EXPECT_FALSE(fs::exists(empty / "report.html"));
+
+  report_test::write_text(empty / "summary.json", "{\"schema\": \"rapid.baseline/1\"}");
+  out = rapid_cli("summarize " + empty.string() + " --html-only", true);
+  EXPECT_EQ(out.exit_code, 2) << out.text;
+  EXPECT_TRUE(has(out.text, "not a rapid.summary/1 document")) << out.text;
+  EXPECT_FALSE(fs::exists(empty / "report.html"));
+
+  out = rapid_cli("summarize " + sweep.string() + " --html-only --out " + empty.string(), true);
+  EXPECT_EQ(out.exit_code, 2) << out.text;
+  EXPECT_EQ(std::count(out.text.begin(), out.text.end(), '\n'), 1) << out.text;
+}
+
+// The committed folders: a grid without axes (quick) and one with two axes (ablations/recheck),
+// neither with its records. Their committed report.html is what --html-only makes of them now.
+TEST(CommittedReportPages, RegenerateByteForByteFromTheCommittedFiles) {
+  testing::ScratchDir scratch;
+  for (const std::string folder : {"quick", "paper-flow", "ablations/epsilon", "ablations/qnorm", "ablations/recheck",
+                                   "ablations/recheck-qnorm", "ablations/return", "slow-start-merge", "slow-start-merge-b32"}) {
+    const fs::path committed = fs::path(RAPID_SOURCE_DIR) / "results" / folder;
+    const fs::path copy = scratch.path() / folder;
+    fs::create_directories(copy.parent_path());
+    fs::copy(committed, copy, fs::copy_options::recursive);
+    fs::remove(copy / "report.html");
+    const auto out = rapid_cli("summarize " + copy.string() + " --html-only", true);
+    ASSERT_EQ(out.exit_code, 0) << folder << "\n" << out.text;
+    const std::string page = report_test::read_text(copy / "report.html");
+    EXPECT_EQ(page, report_test::read_text(committed / "report.html"))
+        << folder << ": the committed report.html is out of date; rapid summarize results/" << folder << " --html-only";
+    if (folder == "ablations/recheck") {
+      EXPECT_TRUE(has(page, "<th scope=\"col\">Axes</th>"));
+      EXPECT_TRUE(has(page, "alt=\"sensitivity-epsilon\""));
+      EXPECT_TRUE(has(page, "alt=\"sensitivity-return_horizon\""));
+    }
+    EXPECT_TRUE(has(page, "The run records are not in this folder")) << folder;
+  }
+}
+
+}  // namespace
+}  // namespace rapid
