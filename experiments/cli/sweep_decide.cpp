@@ -39,11 +39,6 @@ bool selected_jobs_done(const SweepFolder& folder, const Selection& selection) {
 
 }  // namespace
 
-int decide_looks_max(int initial_seeds, const DecideSettings& settings) {
-  const int room = std::max(0, settings.max_seeds - initial_seeds);
-  return 1 + (room + settings.block - 1) / settings.block;
-}
-
 void start_decide(const fs::path& sweep_dir, const Grid& grid, const DecideSettings& settings,
                   const nlohmann::json& extra) {
   const int initial = static_cast<int>(grid.seeds.size());
@@ -73,7 +68,6 @@ DecideState advance_decide(const fs::path& sweep_dir, const DecideSettings& sett
                            std::ostream& log) {
   nlohmann::json plan = read_decide(sweep_dir);
   const std::vector<std::uint64_t> initial = plan.at("initial_seeds").get<std::vector<std::uint64_t>>();
-  const int looks_max = decide_looks_max(static_cast<int>(initial.size()), settings);
   const int submitted_before = plan.value("submitted_look", -1);  // -1: none
   plan.erase("submitted_look");
   plan.erase("stopped");
@@ -95,27 +89,13 @@ DecideState advance_decide(const fs::path& sweep_dir, const DecideSettings& sett
     const Summary s = build_summary(sweep_dir);
     if (!s.decisions) return stop(DecideState::kFinished, "the grid's profile has no decision rule (decisions.json); nothing to decide");
     nlohmann::json entry = {{"look", look}, {"verdicts", nlohmann::json::object()}};
-    bool all_decided = true;
-    for (const DecidedClaim& c : s.decisions->claims) {
-      entry["verdicts"][c.id] = c.verdict;
-      all_decided = all_decided && c.verdict != "UNDECIDED";
-    }
-    // The cells of the undecided comparisons that may still grow.
-    std::set<std::string> grow;
-    for (const Comparison& c : s.decisions->comparisons)
-      if (c.outcome == ComparisonOutcome::kUndecided)
-        for (const std::string& cell : c.cells) {
-          const int has = seeds_of.count(cell) ? seeds_of.at(cell) : static_cast<int>(initial.size());
-          if (has < settings.max_seeds) grow.insert(cell);
-        }
-    std::string why;
-    if (all_decided) why = "every claim decided";
-    else if (grow.empty()) why = "the undecided comparisons' cells have the maximum of " + std::to_string(settings.max_seeds) + " seeds";
-    else if (look + 1 >= looks_max) why = "the largest number of looks was reached";
-    if (!why.empty()) {
+    for (const DecidedClaim& c : s.decisions->claims) entry["verdicts"][c.id] = c.verdict;
+    const NextLook next = next_look(*s.decisions, seeds_of, static_cast<int>(initial.size()), look, settings);
+    if (!next.stop.empty()) {
       plan["looks"].push_back(entry);
-      return stop(DecideState::kFinished, "look " + std::to_string(look) + ": " + why);
+      return stop(DecideState::kFinished, "look " + std::to_string(look) + ": " + next.stop);
     }
+    const std::set<std::string>& grow = next.grow;
     // The next block: the seeds after every seed the grid has, for the growing cells only.
     std::vector<std::uint64_t> block;
     const std::uint64_t largest = *std::max_element(seeds.begin(), seeds.end());

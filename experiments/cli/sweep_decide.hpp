@@ -1,7 +1,7 @@
 // `rapid sweep GRID --decide`: adaptive seeds (docs/decisions.md §Adaptive seeds). After the grid
 // has run on its own seeds, look at the decided claims; add a block of seeds to the cells of the
 // undecided comparisons only; look again; stop when every claim is decided, no such cell can grow,
-// or the largest number of looks is reached. Every look decides at α/K, K the largest number of
+// or the largest number of looks is reached (the rule: report/decide_looks.hpp). Every look decides at α/K, K the largest number of
 // looks, so the family-wise error over all looks stays at most α whichever cells grow. The looks
 // are written to SWEEP/decide.json, which every later summary of the folder reads (its α/K).
 //
@@ -15,19 +15,12 @@
 #include <functional>
 #include <ostream>
 
+#include "experiments/report/decide_looks.hpp"
 #include "experiments/sweep/grid.hpp"
 #include "experiments/sweep/selection.hpp"
 #include "experiments/sweep/state.hpp"
 
 namespace rapid {
-
-struct DecideSettings {
-  int block = 5;       // seeds added to a cell per look
-  int max_seeds = 30;  // seeds a cell may reach
-};
-
-// The largest number of looks: the grid's own seeds, then blocks up to the maximum.
-int decide_looks_max(int initial_seeds, const DecideSettings& settings);
 
 // Writes SWEEP/decide.json's plan before the first look (so the summaries decide at α/K), with
 // `extra` merged in (the Slurm backend's options for the looks it submits later). Forgets a

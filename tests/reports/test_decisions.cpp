@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 
 #include "core/rng.hpp"
 #include "experiments/report/claims_markdown.hpp"
+#include "experiments/report/decide_simulation.hpp"
 #include "experiments/report/decisions.hpp"
 #include "experiments/report/summarize.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
@@ -139,6 +141,49 @@ TEST_F(DecisionsTest, TheProcedureDecidesAWrongDifferenceInAtMostAlphaOfSimulate
   }
   EXPECT_EQ(wrong_way, 0);
   EXPECT_GE(detected / (500.0 * 2), 0.8);  // two rows, power 0.8 as stated
+}
+
+// The whole adaptive procedure, --decide's looks included (report/decide_looks.hpp, the rule
+// `rapid sweep --decide` runs), on simulated seeds: 10 seeds, blocks of 5 up to 30, α/K per look.
+TEST_F(DecisionsTest, AdaptiveSeedsDecideAWrongDifferenceInAtMostAlphaAndATrueOneAtThePower) {
+  const Summary s = make([](const std::string&, const std::string&) { return 500.0; }, 10, 1.0);
+  const double delta = load_decision_settings("short")->delta.at("merge");
+  const auto seed_with = [](double final_return) {
+    SeedResult r;
+    r.final_return = final_return;
+    r.eval = {{0, 0.0}, {500, final_return / 2}, {1000, final_return}};
+    return r;
+  };
+  const DecideSettings plan{.block = 5, .max_seeds = 30};
+  constexpr int kExperiments = 2000;
+  const DecideSimulation null = simulate_decide(s, 10, plan, kExperiments, 7, [&](const CellSummary&, Rng& rng) {
+    return seed_with(rng.normal(500.0, 100.0));
+  });
+  const double bound = 0.05 + 3 * std::sqrt(0.05 * 0.95 / kExperiments);
+  EXPECT_LE(null.adaptive.any_difference / double(kExperiments), bound);
+  EXPECT_LE(null.fixed_max.any_difference / double(kExperiments), bound);
+  EXPECT_GT(null.looks, 1.0);  // the looks did add seeds
+  EXPECT_GT(null.adaptive.runs, null.fixed_initial.runs);
+  EXPECT_LE(null.adaptive.runs, null.fixed_max.runs + plan.block * null.cells);
+
+  // RAPID-RL truly 2δ above every other algorithm, seed std δ: 10 seeds do not always tell, the looks do.
+  const DecideSimulation better = simulate_decide(s, 10, plan, 500, 8, [&](const CellSummary& c, Rng& rng) {
+    return seed_with(rng.normal(c.algo == "rapid-rl" ? 500.0 + 2 * delta : 500.0, delta));
+  });
+  const auto share = [&](const DesignOutcome& d, const std::string& claim, const std::string& verdict) {
+    const auto v = d.verdicts.at(claim);
+    return (v.count(verdict) ? v.at(verdict) : 0) / 500.0;
+  };
+  EXPECT_GE(share(better.adaptive, "C1", "CONFIRMED"), 0.8);   // highest mean in most rows
+  EXPECT_EQ(share(better.adaptive, "C1", "REFUTED"), 0.0);
+  EXPECT_LT(share(better.fixed_initial, "C1", "CONFIRMED"), share(better.adaptive, "C1", "CONFIRMED"));
+  EXPECT_LT(better.adaptive.runs, better.fixed_max.runs);
+  std::cout << "no difference: a difference declared in " << null.adaptive.any_difference << "/" << kExperiments
+            << " (--decide, " << null.looks << " looks, " << null.adaptive.runs << " runs), "
+            << null.fixed_max.any_difference << " (30 seeds); 2δ: C1 confirmed in "
+            << share(better.adaptive, "C1", "CONFIRMED") << " (--decide, " << better.adaptive.runs << " runs), "
+            << share(better.fixed_initial, "C1", "CONFIRMED") << " (10 seeds), " << share(better.fixed_max, "C1", "CONFIRMED")
+            << " (30 seeds, " << better.fixed_max.runs << " runs)\n";
 }
 
 }  // namespace

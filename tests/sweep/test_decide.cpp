@@ -3,6 +3,7 @@
 // command again runs nothing new (the looks are a function of the records).
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <sstream>
 
 #include "experiments/cli/sweep_decide.hpp"
@@ -45,6 +46,20 @@ TEST(Decide, AddsBlocksOfSeedsToUndecidedCellsAndResumesWithoutRerunning) {
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_TRUE(jobs_ran(sweep).empty());
   EXPECT_EQ(read_json(sweep / "decide.json")["looks"], plan["looks"]);
+
+  // The same sweep's seeds resampled: the three designs, from the grid's own two seeds.
+  const Result sim = run_rapid("simulate-decide " + sweep.string() + " --experiments 20 --max-seeds 4 --block 1");
+  ASSERT_EQ(sim.exit_code, 0) << sim.output;
+  std::ifstream in(sweep / "decide-simulation.md");
+  const std::string md((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(md.find("| fixed, 2 seeds | 4.0 | 50 % |"), std::string::npos) << md;  // 2 cells × 2 seeds
+  EXPECT_NE(md.find("| fixed, 4 seeds | 8.0 | 100 % |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| --decide (2 seeds, blocks of 1 up to 4) |"), std::string::npos) << md;
+  const Result below = run_rapid("simulate-decide " + sweep.string() + " --max-seeds 1");
+  EXPECT_EQ(below.exit_code, 2) << below.output;
+  const Result not_a_sweep = run_rapid("simulate-decide " + dir.path().string());
+  EXPECT_EQ(not_a_sweep.exit_code, 2);
+  EXPECT_NE(not_a_sweep.output.find("SWEEP_DIR: "), std::string::npos) << not_a_sweep.output;
 
   g["seeds"] = {0, 1, 2};
   write_json(dir.path() / "three.json", g);

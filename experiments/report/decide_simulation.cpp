@@ -1,0 +1,160 @@
+#include "experiments/report/decide_simulation.hpp"
+
+#include <sstream>
+#include <stdexcept>
+
+#include "experiments/report/decisions.hpp"
+#include "experiments/report/format.hpp"
+
+namespace rapid {
+
+namespace {
+
+// The observed summary with each cell's seeds replaced by the first n of its drawn sequence.
+Summary with_seeds(const Summary& observed, const std::map<std::string, std::vector<SeedResult>>& draws,
+                   const std::map<std::string, int>& n_of) {
+  Summary s = observed;
+  for (CellSummary& c : s.cells) {
+    const auto d = draws.find(c.key());
+    if (d == draws.end()) continue;
+    const int n = n_of.at(c.key());
+    c.seeds.assign(d->second.begin(), d->second.begin() + n);
+    c.finals.clear();
+    for (const SeedResult& r : c.seeds) c.finals.push_back(*r.final_return);
+    c.n_ok = c.n_expected = n;
+  }
+  return s;
+}
+
+bool decided_a_difference(const Decisions& d) {
+  for (const Comparison& c : d.comparisons)
+    if (c.outcome == ComparisonOutcome::kXBetter || c.outcome == ComparisonOutcome::kYBetter) return true;
+  return false;
+}
+
+// Decides `s` and counts the verdicts and runs into `out`.
+const Decisions& tally(const Decisions& d, const std::map<std::string, int>& n_of, DesignOutcome& out) {
+  for (const DecidedClaim& c : d.claims) ++out.verdicts[c.id][c.verdict];
+  for (const auto& [cell, n] : n_of) out.runs += n;
+  out.any_difference += decided_a_difference(d);
+  return d;
+}
+
+std::map<std::string, std::string> verdicts_of(const Decisions& d) {
+  std::map<std::string, std::string> v;
+  for (const DecidedClaim& c : d.claims) v[c.id] = c.verdict;
+  return v;
+}
+
+}  // namespace
+
+SeedResult resample_seed(const CellSummary& cell, Rng& rng) {
+  std::vector<const SeedResult*> ok;
+  for (const SeedResult& r : cell.seeds)
+    if (r.final_return) ok.push_back(&r);
+  if (ok.empty()) return {};
+  return *ok[rng.index(ok.size())];
+}
+
+DecideSimulation simulate_decide(const Summary& observed, int initial_seeds, const DecideSettings& plan, int experiments,
+                                 std::uint64_t seed, const SeedDraw& draw) {
+  if (!observed.decisions) throw std::invalid_argument("the sweep's profile has no decision rule (decisions.json)");
+  DecideSimulation sim;
+  sim.experiments = experiments;
+  sim.seed = seed;
+  sim.initial_seeds = initial_seeds;
+  sim.plan = plan;
+  const int looks_max = decide_looks_max(initial_seeds, plan);
+  // Enough draws for the most seeds a cell can reach (the last block may pass the maximum).
+  const int longest = initial_seeds + (looks_max - 1) * plan.block;
+  sim.fixed_initial.name = "fixed, " + std::to_string(initial_seeds) + " seeds";
+  sim.fixed_max.name = "fixed, " + std::to_string(plan.max_seeds) + " seeds";
+  sim.adaptive.name = "--decide (" + std::to_string(initial_seeds) + " seeds, blocks of " + std::to_string(plan.block) +
+                      " up to " + std::to_string(plan.max_seeds) + ")";
+  DecisionSettings single = observed.decisions->settings, sequential = single;
+  single.looks = 1;
+  sequential.looks = looks_max;
+
+  Rng rng(seed);
+  for (int e = 0; e < experiments; ++e) {
+    std::map<std::string, std::vector<SeedResult>> draws;
+    for (const CellSummary& c : observed.cells) {
+      if (c.n_ok == 0) continue;
+      std::vector<SeedResult>& seq = draws[c.key()];
+      for (int k = 0; k < longest; ++k) {
+        SeedResult r = draw(c, rng);
+        r.seed = static_cast<std::uint64_t>(k);
+        r.status = "ok";
+        seq.push_back(std::move(r));
+      }
+    }
+    sim.cells = static_cast<int>(draws.size());
+    const auto all_at = [&](int n) {
+      std::map<std::string, int> n_of;
+      for (const auto& [cell, seq] : draws) n_of[cell] = n;
+      return n_of;
+    };
+    const auto at_initial = all_at(initial_seeds), at_max = all_at(plan.max_seeds);
+    tally(decide_claims(with_seeds(observed, draws, at_initial), single), at_initial, sim.fixed_initial);
+    const Decisions fixed_max = decide_claims(with_seeds(observed, draws, at_max), single);
+    tally(fixed_max, at_max, sim.fixed_max);
+
+    std::map<std::string, int> n_of = at_initial;
+    for (int look = 0;; ++look) {
+      const Decisions d = decide_claims(with_seeds(observed, draws, n_of), sequential);
+      const NextLook next = next_look(d, n_of, initial_seeds, look, plan);
+      if (next.stop.empty()) {
+        for (const std::string& cell : next.grow) n_of[cell] += plan.block;
+        continue;
+      }
+      tally(d, n_of, sim.adaptive);
+      sim.looks += look + 1;
+      sim.same_as_fixed_max += verdicts_of(d) == verdicts_of(fixed_max);
+      break;
+    }
+  }
+  for (DesignOutcome* o : {&sim.fixed_initial, &sim.fixed_max, &sim.adaptive}) o->runs /= experiments;
+  sim.looks /= experiments;
+  return sim;
+}
+
+std::string decide_simulation_markdown(const DecideSimulation& sim, const std::string& sweep_name) {
+  std::ostringstream md;
+  const double n = sim.experiments;
+  md << "# Adaptive seeds against fixed designs: " << sweep_name << "\n\n"
+     << "Simulated from this sweep's own per-seed results (`rapid simulate-decide`, docs/decisions.md §Simulation): "
+     << sim.experiments << " experiments (seed " << sim.seed << "), each giving every one of the " << sim.cells
+     << " cells seeds drawn with replacement from its ok seeds, decided three ways. The fixed designs decide once at "
+        "α; --decide decides at α/K over its looks, as `rapid sweep --decide` does.\n\n";
+  const DesignOutcome* designs[] = {&sim.fixed_initial, &sim.fixed_max, &sim.adaptive};
+  md << "| design | runs (mean) | share of the largest fixed design |";
+  std::vector<std::string> claims;
+  for (const auto& [claim, verdicts] : sim.fixed_max.verdicts) {
+    claims.push_back(claim);
+    md << " " << claim << " |";
+  }
+  md << "\n| --- | ---: | ---: |";
+  for (std::size_t i = 0; i < claims.size(); ++i) md << " --- |";
+  md << "\n";
+  for (const DesignOutcome* d : designs) {
+    md << "| " << d->name << " | " << fixed(d->runs, 1) << " | " << fixed(100.0 * d->runs / sim.fixed_max.runs, 0)
+       << " % |";
+    for (const std::string& claim : claims) {
+      std::string cell;
+      const auto verdicts = d->verdicts.find(claim);
+      if (verdicts != d->verdicts.end())
+        for (const auto& [verdict, count] : verdicts->second)
+          cell += (cell.empty() ? "" : ", ") + verdict + " " + fixed(100.0 * count / n, 0) + " %";
+      md << " " << cell << " |";
+    }
+    md << "\n";
+  }
+  md << "\n--decide took " << fixed(sim.looks, 2) << " looks on average and gave every claim the verdict of the "
+     << "fixed " << sim.plan.max_seeds << "-seed design in " << fixed(100.0 * sim.same_as_fixed_max / n, 1)
+     << " % of the experiments, at " << fixed(100.0 * sim.adaptive.runs / sim.fixed_max.runs, 0)
+     << " % of its runs.\n\nThe resampled seeds are this sweep's: where its cells truly differ by little, every design "
+        "sees the same small differences; the simulation measures the designs' cost and agreement, not the claims' truth.\n";
+  return md.str();
+}
+
+}  // namespace rapid
