@@ -116,7 +116,9 @@ TEST_F(ReportCliTest, WriteBaselineRefusesWhatIsNotARegularFileOrCannotBeWritten
   EXPECT_EQ(report_test::read_text(at("mine.json")), "mine");
   EXPECT_TRUE(test::is_fifo(at("fifo.json")));
   EXPECT_TRUE(std::filesystem::is_empty(at("folder.json")));
-  if (device) EXPECT_TRUE(test::is_device(at("null.json")));
+  if (device) {
+    EXPECT_TRUE(test::is_device(at("null.json")));
+  }
 }
 
 TEST_F(ReportCliTest, DiffPassesOnAnIdenticalSweep) {

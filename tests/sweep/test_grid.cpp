@@ -195,7 +195,7 @@ TEST(JobGraph, TheFlowGridsUseTheFlowProfileAndTheBudgetRulesLongRuns) {
   }
   const Grid budget = load_grid(std::string(RAPID_SOURCE_DIR) + "/experiments/grids/budget-flow.json");
   EXPECT_EQ(build_job_graph(budget).jobs.size(), 9u);  // 3 scenarios x 3 seeds, no dataset stage
-  EXPECT_EQ(cell_config(budget, "lane-drop").at("steps"), 800000);
+  EXPECT_EQ(cell_config(budget, "lane-drop").at("steps"), 1600000);
   EXPECT_EQ(cell_config(budget, "lane-drop").at("eval_every"), 5000);
 }
 

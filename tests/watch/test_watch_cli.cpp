@@ -143,11 +143,15 @@ TEST(WatchCli, ARecordThatIsNotARegularFileOrCannotBeWrittenIsRefused) {
   expect_usage_error(args + s / "link.json", "--record", s);
   expect_usage_error(args + s / "fifo.json", "--record", s);
   if (device) expect_usage_error(args + s / "null.json", "--record", s);
-  if (read_only.usable()) expect_usage_error(args + read_only / "t.json", "--record", s);
+  if (read_only.usable()) {
+    expect_usage_error(args + read_only / "t.json", "--record", s);
+  }
   EXPECT_TRUE(std::filesystem::is_symlink(s / "link.json"));
   EXPECT_EQ(test::slurp(s / "mine.json"), "mine");
   EXPECT_TRUE(test::is_fifo(s / "fifo.json"));
-  if (device) EXPECT_TRUE(test::is_device(s / "null.json"));
+  if (device) {
+    EXPECT_TRUE(test::is_device(s / "null.json"));
+  }
   EXPECT_EQ(run_shell(rapid(args + s / "fifo.json")).out,
             "rapid: error: --record: '" + s / "fifo.json" + "' is a FIFO, not a regular file; name a new or regular file\n");
 }
