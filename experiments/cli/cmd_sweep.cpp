@@ -198,16 +198,14 @@ int submit_to_slurm(const SweepOptions& o, SweepFolder& folder, const Selection&
   const DecideOnSlurm decide{.slurm = options, .summary = !o.no_summary, .animations = !o.no_animations};
   if (o.decide) start_decide(dir, folder.grid, o.decide_settings, {{"slurm", decide_on_slurm_json(decide)}});
   SlurmPlan plan = plan_slurm_sweep(folder, selection, o.force);
-  if (plan.arrays.empty()) {
-    std::cout << "sweep " << dir.string() << ": nothing to submit, all " << plan.needed << " jobs are done\n";
-    if (!o.decide) return kExitOk;
-  }
   try {
-    if (!plan.arrays.empty()) submit_slurm_plan(folder, plan, options);
-    if (o.decide) {
-      const int code = continue_decide_on_slurm(folder, plan, decide, std::cout);
-      if (plan.arrays.empty()) return code;
+    if (plan.arrays.empty()) {
+      std::cout << "sweep " << dir.string() << ": nothing to submit, all " << plan.needed << " jobs are done\n";
+      // --decide: the looks go on from here, as a follow-up job would.
+      return o.decide ? continue_decide_on_slurm(folder, plan, decide, std::cout) : kExitOk;
     }
+    submit_slurm_plan(folder, plan, options);
+    if (o.decide) continue_decide_on_slurm(folder, plan, decide, std::cout);  // submits the follow-up
   } catch (const SlurmError& e) {
     std::cerr << "rapid sweep: " << e.what() << "\n";
     return kExitFailed;

@@ -106,7 +106,7 @@ DecideState advance_decide(const fs::path& sweep_dir, const DecideSettings& sett
     entry["cells"] = std::vector<std::string>(grow.begin(), grow.end());
     plan["looks"].push_back(entry);
     write_decide(sweep_dir, plan);
-    for (const std::string& cell : grow) seeds_of[cell] = (seeds_of.count(cell) ? seeds_of.at(cell) : static_cast<int>(initial.size())) + settings.block;
+    for (const std::string& cell : grow) seeds_of.try_emplace(cell, static_cast<int>(initial.size())).first->second += settings.block;
 
     Selection selection;
     selection.cells = grow;

@@ -4,7 +4,6 @@
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
 #include "experiments/sweep/lock.hpp"
-#include "experiments/sweep/process_pool.hpp"
 
 namespace rapid {
 
@@ -80,7 +79,6 @@ int decide_step_command(const fs::path& sweep_dir, std::ostream& out) {
   } catch (const std::exception& e) {
     throw UsageError(std::string("--decide-step: ") + e.what());
   }
-  settings.slurm.binary = current_executable();
   std::unique_ptr<SweepLock> lock;
   try {
     lock = std::make_unique<SweepLock>(sweep_dir);

@@ -32,12 +32,11 @@ bool decided_a_difference(const Decisions& d) {
   return false;
 }
 
-// Decides `s` and counts the verdicts and runs into `out`.
-const Decisions& tally(const Decisions& d, const std::map<std::string, int>& n_of, DesignOutcome& out) {
+// Counts one experiment's verdicts, runs and whether it decided a difference into `out`.
+void tally(const Decisions& d, const std::map<std::string, int>& n_of, DesignOutcome& out) {
   for (const DecidedClaim& c : d.claims) ++out.verdicts[c.id][c.verdict];
   for (const auto& [cell, n] : n_of) out.runs += n;
   out.any_difference += decided_a_difference(d);
-  return d;
 }
 
 std::map<std::string, std::string> verdicts_of(const Decisions& d) {
@@ -75,6 +74,7 @@ DecideSimulation simulate_decide(const Summary& observed, int initial_seeds, con
   single.looks = 1;
   sequential.looks = looks_max;
 
+  for (const CellSummary& c : observed.cells) sim.cells += c.n_ok > 0;
   Rng rng(seed);
   for (int e = 0; e < experiments; ++e) {
     std::map<std::string, std::vector<SeedResult>> draws;
@@ -88,7 +88,6 @@ DecideSimulation simulate_decide(const Summary& observed, int initial_seeds, con
         seq.push_back(std::move(r));
       }
     }
-    sim.cells = static_cast<int>(draws.size());
     const auto all_at = [&](int n) {
       std::map<std::string, int> n_of;
       for (const auto& [cell, seq] : draws) n_of[cell] = n;
