@@ -3,46 +3,64 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace rapid {
 
 ActorCritic::ActorCritic(int obs_dim, int act_dim, const AgentConfig& config, std::uint64_t init_seed)
+    : ActorCritic(obs_dim, act_dim, config, init_seed,
+                  Mlp::make(obs_dim, config.actor_hidden, act_dim, /*layer_norm=*/false, /*tanh_output=*/true), Mlp()) {}
+
+ActorCritic::ActorCritic(int obs_dim, int act_dim, const AgentConfig& config, std::uint64_t init_seed, Mlp actor,
+                         Mlp acting)
     : config_(config),
       obs_dim_(obs_dim),
       act_dim_(act_dim),
-      actor_(Mlp::make(obs_dim, config.actor_hidden, act_dim, /*layer_norm=*/false, /*tanh_output=*/true)),
-      critic_(Mlp::make(obs_dim + act_dim, config.critic_hidden, 1, /*layer_norm=*/true, /*tanh_output=*/false)) {
+      actor_(std::move(actor)),
+      critics_(obs_dim + act_dim, config.critic_hidden, std::max(config.critic_ensemble, 1), config.critic_lr),
+      update_rng_(stream_seed(init_seed, Stream::kUpdate)) {
   Rng rng(init_seed);
   actor_.init(rng);
-  critic_.init(rng);
+  critics_.init(rng);
   actor_target_ = actor_;
-  critic_target_ = critic_;
-  acting_actor_ = actor_;
+  critics_target_ = critics_;
+  acting_actor_ = acting.params().size() > 0 ? std::move(acting) : actor_;
+  acting_stale_ = true;
   actor_opt_ = Adam(actor_.params().size(), AdamConfig{.lr = config.actor_lr});
-  critic_opt_ = Adam(critic_.params().size(), AdamConfig{.lr = config.critic_lr});
   single_obs_.resize(obs_dim, 1);
 }
 
 void ActorCritic::bc_weights(const Batch& batch, RowVec& w) const { w.setZero(batch.size()); }
 
-namespace {
-
-// The means of `v` over its first `n_prior` entries and over the rest; NaN for an empty part.
-void split_means(const RowVec& v, int n_prior, float& prior, float& online) {
+void ActorCritic::split_means(const RowVec& v, int n_prior, float& prior, float& online) {
   const int b = static_cast<int>(v.size());
   prior = n_prior > 0 ? v.head(n_prior).mean() : std::numeric_limits<float>::quiet_NaN();
   online = n_prior < b ? v.tail(b - n_prior).mean() : std::numeric_limits<float>::quiet_NaN();
 }
 
-}  // namespace
+void ActorCritic::sync_acting() { acting_actor_.params() = actor_.params(); }
+
+void ActorCritic::sync_acting_if_stale() {
+  if (!acting_stale_) return;
+  sync_acting();
+  acting_stale_ = false;
+}
 
 const Mat& ActorCritic::act(const ConstVecRef& obs) {
-  if (acting_actor_stale_) {
-    acting_actor_.params() = actor_.params();
-    acting_actor_stale_ = false;
-  }
+  sync_acting_if_stale();
   single_obs_.col(0) = obs;
   return acting_actor_.forward(single_obs_);
+}
+
+void ActorCritic::explore(const ConstVecRef& obs, Rng& rng, Vec& action) {
+  action = act(obs).col(0);
+  for (Eigen::Index i = 0; i < action.size(); ++i)
+    action[i] = std::clamp(action[i] + static_cast<float>(rng.normal(0.0, config_.noise_std)), -1.0f, 1.0f);
+}
+
+void ActorCritic::save_policy(const std::string& path, std::int64_t updates) {
+  sync_acting_if_stale();
+  acting_actor_.save(path, updates);
 }
 
 const Mat& ActorCritic::critic_input(const Mat& obs, const Mat& act) {
@@ -52,11 +70,30 @@ const Mat& ActorCritic::critic_input(const Mat& obs, const Mat& act) {
   return sa_;
 }
 
+const RowVec& ActorCritic::target_q(const Mat& next_obs, const Mat& next_act) {
+  critics_target_.draw_subset(update_rng_, std::max(config_.critic_subset, 1), target_subset_);
+  const Mat& next_q = critics_target_.forward(critic_input(next_obs, next_act), target_subset_);
+  next_q_ = next_q.colwise().minCoeff();
+  return next_q_;
+}
+
 const RowVec& ActorCritic::critic_targets(const Batch& batch) {
   const Mat& next_action = actor_target_.forward(batch.next_obs);
-  const Mat& next_q = critic_target_.forward(critic_input(batch.next_obs, next_action));
+  const Mat* target_action = &next_action;
+  if (config_.target_noise > 0.0f) {
+    // TD3's target policy smoothing: clip(π'(s') + clip(N(0, σ̃), −c, c), −1, 1).
+    target_noise_.resize(next_action.rows(), next_action.cols());
+    for (Eigen::Index c = 0; c < target_noise_.cols(); ++c)
+      for (Eigen::Index r = 0; r < target_noise_.rows(); ++r) {
+        const float n = static_cast<float>(update_rng_.normal(0.0, config_.target_noise));
+        target_noise_(r, c) = std::clamp(
+            next_action(r, c) + std::clamp(n, -config_.target_noise_clip, config_.target_noise_clip), -1.0f, 1.0f);
+      }
+    target_action = &target_noise_;
+  }
+  const RowVec& next_q = target_q(batch.next_obs, *target_action);
   // Terminals (collisions) stop the bootstrap; time-limit truncations do not (docs/design.md §Environments).
-  y_ = batch.rew.array() + config_.gamma * batch.not_terminal.array() * next_q.row(0).array();
+  y_ = batch.rew.array() + config_.gamma * batch.not_terminal.array() * next_q.array();
   return y_;
 }
 
@@ -75,11 +112,11 @@ float ActorCritic::q_weight_of(const Mat& q) const {
 float ActorCritic::actor_objective(const Batch& batch, UpdateStats& stats, std::optional<float> fixed_q_weight) {
   const int b = batch.size();
   pi_ = actor_.forward(batch.obs);
-  const Mat& q = critic_.forward(critic_input(batch.obs, pi_));
+  const Mat& q = critics_.forward(critic_input(batch.obs, pi_), actor_q_member_);
   const float lambda = fixed_q_weight ? *fixed_q_weight : q_weight_of(q);
   // −λ·(1/B) Σ Q(s, π(s)): back-propagate through the critic into the action, not its weights.
-  dq_.setConstant(1, b, -lambda / static_cast<float>(b));
-  dpi_ = critic_.backward(dq_, Grads::kInputOnly).bottomRows(act_dim_);
+  dq_pi_.setConstant(1, b, -lambda / static_cast<float>(b));
+  dpi_ = critics_.input_gradient(dq_pi_).bottomRows(act_dim_);
   // Each column of dpi_ is now −(λ/B)·∂Q/∂a: B times its norm is the sample's Q-term gradient.
   grad_norm_ = dpi_.colwise().norm() * static_cast<float>(b);
   const int n_prior = batch.prior_count;
@@ -126,35 +163,38 @@ float ActorCritic::q_weight(const Batch& batch) {
 void ActorCritic::actor_step(const Batch& batch, UpdateStats& stats) {
   actor_gradient(batch, stats);
   actor_opt_.step(actor_.params(), actor_.grads());
-  acting_actor_stale_ = true;
+  actor_changed();
 }
 
 void ActorCritic::critic_step(const Batch& batch, UpdateStats& stats) {
   const int b = batch.size();
-  critic_targets(batch);
-  const Mat& q = critic_.forward(critic_input(batch.obs, batch.act));
-  // L(θ) = (1/B) Σ (Q(s, a) − y)², with y held fixed.
-  dq_ = q - y_;
-  stats.critic_loss = dq_.squaredNorm() / static_cast<float>(b);
+  const float n = static_cast<float>(critics_.size() * b);
+  const RowVec& y = critic_targets(batch);
+  const Mat& q = critics_.forward(critic_input(batch.obs, batch.act), critics_.all_members());
+  // L(θ) = (1/(N·B)) Σ_i Σ_b (Q_i(s, a) − y)², with y held fixed.
+  dq_ = q.rowwise() - y;
+  stats.critic_loss = dq_.squaredNorm() / n;
   stats.q_mean = q.mean();
-  dq_ *= 2.0f / static_cast<float>(b);
-  critic_.zero_grad();
-  critic_.backward(dq_, Grads::kParamsOnly);
-  critic_opt_.step(critic_.params(), critic_.grads());
+  dq_ *= 2.0f / n;
+  critics_.train_step(dq_);
+}
+
+void ActorCritic::soft_update_targets() {
+  actor_target_.soft_update_from(actor_, config_.tau);
+  critics_target_.soft_update_from(critics_, config_.tau);
 }
 
 UpdateStats ActorCritic::update(const Batch& batch) {
   UpdateStats stats;
   actor_step(batch, stats);
   critic_step(batch, stats);
-  actor_target_.soft_update_from(actor_, config_.tau);
-  critic_target_.soft_update_from(critic_, config_.tau);
+  soft_update_targets();
   stats.finite = std::isfinite(stats.critic_loss) && std::isfinite(stats.actor_loss);
   return stats;
 }
 
 bool ActorCritic::parameters_finite() const {
-  return actor_.params().allFinite() && critic_.params().allFinite();
+  return actor_.params().allFinite() && critics_.parameters_finite();
 }
 
 }  // namespace rapid

@@ -1,8 +1,15 @@
 // The DDPG actor-critic backbone every algorithm shares (paper Algorithm 1, eqs. (2)–(3)):
-// deterministic tanh actor, critic Q(s, a) with LayerNorm after each hidden layer, target
+// deterministic tanh actor, critics Q(s, a) with LayerNorm after each hidden layer, target
 // networks with Polyak averaging, Adam.
 //
-// An algorithm is this class plus two answers:
+// The critics are an ensemble of critic_ensemble members (1 for the paper's five), and the target
+// of eq. (3) takes the minimum over critic_subset of the target members drawn afresh for every
+// update (all of them when the subset is the whole ensemble: TD3's twin minimum). The actor's Q
+// term reads the first member (TD3's Q1). An algorithm with another update rule (TD3's delayed
+// actor, SAC's stochastic actor and temperature) overrides update() and the pieces below, in one
+// file beside this one (td3_bc.hpp, rlpd_sac.hpp).
+//
+// The paper's algorithms are this class plus two answers:
 //   bc_weights()   the per-sample weight w_i of the imitation term in the actor loss
 //                  L(φ) = −λ·(1/B) Σ Q(s_i, π(s_i)) + (1/B) Σ w_i ‖π(s_i) − a_i‖²
 //                  (overridden in the files beside this one, with imitates(); the backbone's is
@@ -14,11 +21,15 @@
 
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "algos/agent_config.hpp"
 #include "core/adam.hpp"
+#include "core/critic_ensemble.hpp"
 #include "core/mlp.hpp"
 #include "core/replay_buffer.hpp"
+#include "core/rng.hpp"
 
 namespace rapid {
 
@@ -36,27 +47,43 @@ struct UpdateStats {
   // over the prior columns and over the online columns (NaN for a half the batch does not have).
   float q_grad_prior = 0.0f, q_grad_online = 0.0f;
   float bc_grad_prior = 0.0f, bc_grad_online = 0.0f;
+  // Whether this step updated the actor (every step of the paper's five; one in policy_delay of
+  // TD3's, one in utd_ratio of RLPD's). The actor-side fields above are only set when it did.
+  bool actor_updated = true;
+  float temperature = 0.0f;     // SAC's entropy temperature α after the step (0 without one)
   bool finite = true;           // false if a loss came out NaN or inf
 };
 
 class ActorCritic {
  public:
+  // The networks are initialised from `init_seed`; the randomness of the updates themselves (the
+  // target's critic subset, TD3's target noise, SAC's samples) comes from its own stream,
+  // stream_seed(init_seed, Stream::kUpdate), which the paper's five never draw from.
   ActorCritic(int obs_dim, int act_dim, const AgentConfig& config, std::uint64_t init_seed);
   virtual ~ActorCritic() = default;
 
-  // Deterministic action π(s) for one observation (no allocation after the first call).
+  // The deterministic action for one observation, the one evaluations take: π(s) (no allocation
+  // after the first call).
   const Mat& act(const ConstVecRef& obs);
+  // The exploring action for one observation during training, into `action`: π(s) plus Gaussian
+  // noise of std noise_std from `rng`, clipped to [-1, 1].
+  virtual void explore(const ConstVecRef& obs, Rng& rng, Vec& action);
 
-  // One gradient step on `batch`: the actor on (2), then the critic on (3), then the targets
-  // (Algorithm 1's order).
-  UpdateStats update(const Batch& batch);
+  // One learning step on `batch` (the trainer calls it utd_ratio times per decision, each on a
+  // fresh batch): the actor on (2), then the critic on (3), then the targets (Algorithm 1's order).
+  virtual UpdateStats update(const Batch& batch);
 
-  // The critic's target y = r + γ·(1 − terminal)·Q'(s', π'(s')); timeouts bootstrap.
-  const RowVec& critic_targets(const Batch& batch);
+  // The critic's target y = r + γ·(1 − terminal)·min over the subset of Q'_j(s', π'(s')), with
+  // TD3's clipped noise on π'(s') when target_noise > 0; timeouts bootstrap.
+  virtual const RowVec& critic_targets(const Batch& batch);
+
+  // Saves the deterministic policy act() runs as a network checkpoint (Mlp::save): what datasets
+  // and `rapid rollout --policy` load.
+  void save_policy(const std::string& path, std::int64_t updates);
 
   // Writes dL/dφ of the actor loss (2) on `batch` into actor().grads() and returns L(φ); changes
   // no parameter. Exposed so tests can check the gradient against finite differences.
-  float compute_actor_gradient(const Batch& batch);
+  virtual float compute_actor_gradient(const Batch& batch);
   // The same with the Q term's weight held at `q_weight` instead of computed from the batch. The
   // gradient treats λ as a constant (no gradient flows through it), so a finite-difference test
   // perturbs this function, with λ fixed at the unperturbed q_weight(batch).
@@ -67,7 +94,11 @@ class ActorCritic {
   bool parameters_finite() const;
   const AgentConfig& config() const { return config_; }
   Mlp& actor() { return actor_; }
-  Mlp& critic() { return critic_; }
+  // The first critic (the only one of the paper's five); critics() is the whole ensemble.
+  Mlp& critic() { return critics_.member(0); }
+  CriticEnsemble& critics() { return critics_; }
+  Mlp& actor_target() { return actor_target_; }
+  CriticEnsemble& target_critics() { return critics_target_; }
 
  protected:
   // w_i of the imitation term for each column of `batch` (w has batch.size() entries).
@@ -75,6 +106,35 @@ class ActorCritic {
   // Whether the actor loss has an imitation term (bc_weights not all zero by construction); only
   // then does bc_q_alpha scale the Q term, so it changes nothing for DDPG and RLPD.
   virtual bool imitates() const { return false; }
+
+  // The means of `v` over its first `n_prior` entries (a batch's prior columns) and over the
+  // rest; NaN for an empty part.
+  static void split_means(const RowVec& v, int n_prior, float& prior, float& online);
+
+  // The steps update() is made of, for the algorithms that order them differently.
+  void actor_step(const Batch& batch, UpdateStats& stats);
+  // The critics on (3) towards critic_targets(batch): the mean over members and columns of
+  // (Q_i(s, a) − y)².
+  void critic_step(const Batch& batch, UpdateStats& stats);
+  void soft_update_targets();  // the actor's and the critics' targets by τ
+  // min over `subset` target critics of Q'(s', a') (1 × B), the subset drawn from update_rng()
+  // (every member, undrawn, when the subset is the ensemble).
+  const RowVec& target_q(const Mat& next_obs, const Mat& next_act);
+  // Writes [s; a] into the critic's input buffer.
+  const Mat& critic_input(const Mat& obs, const Mat& act);
+  // Marks the acting copies out of date after the actor changed; sync_acting() refreshes them.
+  void actor_changed() { acting_stale_ = true; }
+  // Copies the actor's parameters into the network act() runs, acting_network() (a batch-1 copy
+  // of the actor here); called by act() and save_policy() when the actor changed since.
+  virtual void sync_acting();
+  void sync_acting_if_stale();
+  Mlp& acting_network() { return acting_actor_; }
+  Rng& update_rng() { return update_rng_; }
+  int act_dim() const { return act_dim_; }
+  Adam& actor_optimiser() { return actor_opt_; }
+  // With its own actor network instead of the deterministic tanh actor, and the network act()
+  // runs (SAC's Gaussian head and its mean's tanh); initialised like the backbone's.
+  ActorCritic(int obs_dim, int act_dim, const AgentConfig& config, std::uint64_t init_seed, Mlp actor, Mlp acting);
 
  private:
   // λ for the batch's Q(s, π(s)) (a 1 × B row).
@@ -84,22 +144,21 @@ class ActorCritic {
   float actor_objective(const Batch& batch, UpdateStats& stats, std::optional<float> fixed_q_weight);
   // actor_objective, then back-propagates dpi_ into the actor's parameter gradients.
   float actor_gradient(const Batch& batch, UpdateStats& stats, std::optional<float> fixed_q_weight = std::nullopt);
-  void actor_step(const Batch& batch, UpdateStats& stats);
-  void critic_step(const Batch& batch, UpdateStats& stats);
-  // Writes [s; a] into the critic's input buffer.
-  const Mat& critic_input(const Mat& obs, const Mat& act);
 
   AgentConfig config_;
   int obs_dim_, act_dim_;
-  Mlp actor_, critic_, actor_target_, critic_target_;
+  Mlp actor_, actor_target_;
+  CriticEnsemble critics_, critics_target_;
   // A copy of the actor for single observations, so acting (batch 1) and updating (batch B) each
   // keep buffers of one size and neither reallocates; synced lazily after updates.
   Mlp acting_actor_;
-  bool acting_actor_stale_ = false;
-  Adam actor_opt_, critic_opt_;
+  bool acting_stale_ = false;
+  Adam actor_opt_;
+  Rng update_rng_;
   // Preallocated per-update buffers.
-  Mat sa_, pi_, dpi_, dq_, single_obs_;
-  RowVec y_, w_, sq_err_, grad_norm_;
+  Mat sa_, pi_, dpi_, dq_pi_, dq_, single_obs_, target_noise_;
+  RowVec y_, w_, sq_err_, grad_norm_, next_q_;
+  std::vector<int> actor_q_member_ = {0}, target_subset_;
 };
 
 }  // namespace rapid

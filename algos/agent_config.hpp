@@ -23,6 +23,16 @@ struct AgentConfig {
   // RAPID-RL (return)'s window n in decisions; 0: not given (an optional key that rapid-rl-return
   // needs; algos/registry.hpp, Algorithm::return_window).
   int return_horizon{};
+  // The backbone's pieces beyond DDPG's (optional keys; their neutral values are the paper's
+  // five's backbone, and rlpd-sac and td3-bc set theirs through their recipes, algos/registry.cpp).
+  int utd_ratio{};          // learning steps per decision (RLPD's update-to-data ratio)
+  int critic_ensemble{};    // N critics
+  int critic_subset{};      // M ≤ N target critics drawn per update; the target is their minimum
+  int policy_delay{};       // TD3: the actor and the targets move once per this many critic steps
+  float target_noise{};     // TD3: std of the Gaussian noise on the target action (0: none)
+  float target_noise_clip{};  // TD3: that noise clipped to ±this
+  float init_temperature{};   // SAC: the entropy temperature α at the start
+  float target_entropy_per_dim{};  // SAC: the target entropy is this × the action dimension
 };
 
 }  // namespace rapid

@@ -7,6 +7,8 @@
 #include "algos/col_prior.hpp"
 #include "algos/rapid_rl.hpp"
 #include "algos/rapid_rl_return.hpp"
+#include "algos/rlpd_sac.hpp"
+#include "algos/td3_bc.hpp"
 #include "core/printable.hpp"
 
 namespace rapid {
@@ -30,6 +32,18 @@ const std::vector<Algorithm>& algorithms() {
       // Not in the paper: RAPID-RL weighting by the mean reward over the next decisions.
       {"rapid-rl-return", "RAPID-RL (return)", true, make<RapidRlReturn>, {"epsilon", "return_horizon", "bc_q_alpha"},
        /*uses_returns=*/true, /*in_paper=*/false},
+      // Not in the paper: RLPD as published (SAC, an ensemble of 10 critics, UTD 20; rlpd_sac.hpp).
+      {"rlpd-sac", "RLPD (SAC)", true, make<RlpdSac>,
+       {"utd_ratio", "critic_ensemble", "critic_subset", "init_temperature", "target_entropy_per_dim"},
+       /*uses_returns=*/false, /*in_paper=*/false,
+       {{"utd_ratio", 20}, {"critic_ensemble", 10}, {"critic_subset", 2}, {"init_temperature", 1.0},
+        {"target_entropy_per_dim", -0.5}}},
+      // Not in the paper: TD3+BC online on symmetric batches (td3_bc.hpp).
+      {"td3-bc", "TD3+BC", true, make<Td3Bc>,
+       {"critic_ensemble", "critic_subset", "policy_delay", "target_noise", "target_noise_clip", "bc_q_alpha"},
+       /*uses_returns=*/false, /*in_paper=*/false,
+       {{"critic_ensemble", 2}, {"critic_subset", 2}, {"policy_delay", 2}, {"target_noise", 0.2},
+        {"target_noise_clip", 0.5}, {"bc_q_alpha", 2.5}}},
   };
   return table;
 }
@@ -46,6 +60,14 @@ int Algorithm::return_window(const AgentConfig& config) const {
                                 "' needs config key 'return_horizon' (decisions of the return window; e.g. --set "
                                 "return_horizon=20)");
   return config.return_horizon;
+}
+
+void Algorithm::check(const AgentConfig& config) const {
+  return_window(config);
+  if (config.critic_subset > config.critic_ensemble)
+    throw std::invalid_argument("algorithm '" + name + "': config key 'critic_subset' (" +
+                                std::to_string(config.critic_subset) + ") exceeds 'critic_ensemble' (" +
+                                std::to_string(config.critic_ensemble) + ")");
 }
 
 bool is_algorithm_key(const std::string& key) {

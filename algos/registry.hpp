@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "algos/actor_critic.hpp"
@@ -31,12 +32,19 @@ struct Algorithm {
   // One of the paper's five algorithms (Table I's columns): the claims check and the probability
   // that RAPID-RL beats each baseline concern these only.
   bool in_paper = true;
+  // The published values of its own keys (RLPD's UTD and ensemble, TD3's delay and noise), given
+  // to a run whose config leaves the key out (experiments/run/job.hpp, with_recipe): the run's
+  // record lists the keys they filled. A config that gives the key wins.
+  std::vector<std::pair<std::string, double>> recipe;
 
   bool reads(const std::string& key) const;
   // The window its buffers compute Batch::ret over: return_horizon for an algorithm that uses
   // returns, 1 (ret = r, at no cost) for the others. Throws std::invalid_argument("algorithm 'A'
   // needs config key 'return_horizon' (…)") when the key was not given.
   int return_window(const AgentConfig& config) const;
+  // Throws std::invalid_argument naming the key when `config` (its recipe applied) cannot make
+  // this algorithm's agent: a missing return_horizon, a critic subset larger than the ensemble.
+  void check(const AgentConfig& config) const;
 };
 
 // In the order of the paper's Table I columns, then the algorithms the paper does not have.

@@ -94,6 +94,34 @@ void Mlp::init(Rng& rng, float final_scale) {
   }
 }
 
+Mlp Mlp::first_outputs(int count, bool tanh_output) const {
+  int last_linear = -1;
+  for (int i = 0; i < static_cast<int>(specs_.size()); ++i)
+    if (specs_[i].kind == LayerKind::kLinear) last_linear = i;
+  if (count <= 0 || count > layers_[last_linear].out)
+    throw std::invalid_argument("Mlp::first_outputs: " + std::to_string(count) + " of " +
+                                std::to_string(layers_[last_linear].out) + " outputs");
+  std::vector<LayerSpec> specs(specs_.begin(), specs_.begin() + last_linear + 1);
+  specs.back().out = count;
+  if (tanh_output) specs.push_back({LayerKind::kTanh});
+  Mlp sliced(input_dim_, specs);
+  copy_first_outputs_to(sliced);
+  return sliced;
+}
+
+void Mlp::copy_first_outputs_to(Mlp& dst) const {
+  // Every layer before the last Linear is the same, so its parameters are a common prefix.
+  int last_linear = -1;
+  for (int i = 0; i < static_cast<int>(layers_.size()); ++i)
+    if (layers_[i].kind == LayerKind::kLinear) last_linear = i;
+  const Layer& src = layers_[last_linear];
+  const Layer& out = dst.layers_[last_linear];
+  dst.params_.head(src.w_off) = params_.head(src.w_off);
+  Eigen::Map<const Mat> w(params_.data() + src.w_off, src.out, src.in);
+  Eigen::Map<Mat>(dst.params_.data() + out.w_off, out.out, out.in) = w.topRows(out.out);
+  dst.params_.segment(out.b_off, out.out) = params_.segment(src.b_off, out.out);
+}
+
 void Mlp::plan_buffers() {
   // May layer i+1 overwrite layer i's output? Only if layer i's backward does not read it: a
   // Linear reads its input, LayerNorm its x̂, ReLU and Tanh their own output. The caller's x is

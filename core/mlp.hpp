@@ -68,6 +68,13 @@ class Mlp {
   // Human-readable layer list, e.g. "19-Linear128-LN-ReLU-Linear2-Tanh".
   std::string describe() const;
 
+  // The same network keeping only the first `count` outputs of its last Linear layer (whatever
+  // followed that layer is dropped), then tanh if `tanh_output`: SAC's evaluation policy, tanh of
+  // the mean half of its Gaussian head. copy_first_outputs_to refreshes such a network's
+  // parameters from this one without allocating.
+  Mlp first_outputs(int count, bool tanh_output) const;
+  void copy_first_outputs_to(Mlp& dst) const;
+
   // this ← τ·source + (1−τ)·this (source must have the same architecture).
   void soft_update_from(const Mlp& source, float tau);
 

@@ -21,6 +21,7 @@ enum class Stream : std::uint64_t {
   kEnvEval = 5,       // traffic of evaluation episode `index` (seeded from a fixed base, see below)
   kDataset = 6,       // dataset collection rollouts
   kBootstrap = 7,     // statistics resampling
+  kUpdate = 8,        // inside a learning step: target critic subsets, target noise, SAC's samples
 };
 
 // Evaluation episodes use the same traffic for every run and algorithm (a paired comparison):

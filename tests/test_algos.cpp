@@ -2,12 +2,17 @@
 // the Q term's TD3+BC normalisation, and the critic target's terminal/timeout handling.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <tuple>
 
 #include "algos/registry.hpp"
+#include "algos/rlpd_sac.hpp"
+#include "core/tanh_gaussian.hpp"
 #include "tests/finite_difference.hpp"
+#include "tests/recipe_config.hpp"
 
 using namespace rapid;
 
@@ -27,8 +32,11 @@ AgentConfig small_config() {
   c.noise_std = 0.1f;
   c.epsilon = -0.15f;
   c.lambda_bc = 1.0f;
-  return c;
+  return test::with_recipe(c, "ddpg");  // the backbone's pieces at their neutral values
 }
+
+// small_config() with `name`'s recipe where it sets a key.
+AgentConfig recipe_config(const std::string& name) { return test::with_recipe(small_config(), name); }
 
 // A hand-made batch: first half "prior", rewards and mean returns spread around ε = −0.15, on
 // opposite sides of it in several columns.
@@ -47,17 +55,23 @@ Batch hand_made_batch() {
 }
 
 std::unique_ptr<ActorCritic> agent(const std::string& name) {
-  return find_algorithm(name).make(kObs, kAct, small_config(), 17);
+  return find_algorithm(name).make(kObs, kAct, recipe_config(name), 17);
 }
 
-// An agent whose critic is moved away from its near-zero init, so the Q term carries weight too.
+// Moves the critics (every member) and the actor away from their near-zero init, so the Q term
+// carries weight too.
+void perturb(ActorCritic& a) {
+  Rng rng(5);
+  for (int m = 0; m < a.critics().size(); ++m)
+    for (Eigen::Index i = 0; i < a.critics().member(m).params().size(); ++i)
+      a.critics().member(m).params()[i] += static_cast<float>(rng.uniform(-0.5, 0.5));
+  for (Eigen::Index i = 0; i < a.actor().params().size(); ++i)
+    a.actor().params()[i] += static_cast<float>(rng.uniform(-0.3, 0.3));
+}
+
 std::unique_ptr<ActorCritic> perturbed_agent(const std::string& name, const AgentConfig& config) {
   auto a = find_algorithm(name).make(kObs, kAct, config, 17);
-  Rng rng(5);
-  for (Eigen::Index i = 0; i < a->critic().params().size(); ++i)
-    a->critic().params()[i] += static_cast<float>(rng.uniform(-0.5, 0.5));
-  for (Eigen::Index i = 0; i < a->actor().params().size(); ++i)
-    a->actor().params()[i] += static_cast<float>(rng.uniform(-0.3, 0.3));
+  perturb(*a);
   return a;
 }
 
@@ -102,7 +116,8 @@ TEST_P(ActorLossGradient, AgreesWithFiniteDifferences) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllAlgorithms, ActorLossGradient,
-                         ::testing::Combine(::testing::Values("ddpg", "rlpd", "col-prior", "col-all", "rapid-rl", "rapid-rl-return"),
+                         ::testing::Combine(::testing::Values("ddpg", "rlpd", "col-prior", "col-all", "rapid-rl", "rapid-rl-return",
+                                                              "td3-bc"),
                                             ::testing::Values(0.0f, 2.5f)),
                          [](const auto& info) {
                            std::string n = std::get<0>(info.param);
@@ -208,12 +223,16 @@ TEST(ColAll, BcTermCoversTheWholeBatch) {
 }
 
 TEST(Registry, RowsInThePapersColumnOrderWithPriorUseAndUnknownNames) {
-  EXPECT_EQ(algo_names(), (std::vector<std::string>{"rapid-rl", "rlpd", "col-prior", "col-all", "ddpg", "rapid-rl-return"}));
+  EXPECT_EQ(algo_names(), (std::vector<std::string>{"rapid-rl", "rlpd", "col-prior", "col-all", "ddpg",
+                                                     "rapid-rl-return", "rlpd-sac", "td3-bc"}));
   EXPECT_FALSE(find_algorithm("ddpg").uses_prior);
-  for (const char* n : {"rlpd", "col-prior", "col-all", "rapid-rl", "rapid-rl-return"})
+  for (const char* n : {"rlpd", "col-prior", "col-all", "rapid-rl", "rapid-rl-return", "rlpd-sac", "td3-bc"})
     EXPECT_TRUE(find_algorithm(n).uses_prior) << n;
   for (const Algorithm& a : algorithms()) {
-    EXPECT_EQ(a.in_paper, a.name != "rapid-rl-return") << a.name;
+    EXPECT_EQ(a.in_paper, a.name != "rapid-rl-return" && a.name != "rlpd-sac" && a.name != "td3-bc") << a.name;
+    // A recipe sets only the algorithm's own keys, and the paper's five have none.
+    for (const auto& [key, value] : a.recipe) EXPECT_TRUE(a.reads(key) && is_algorithm_key(key)) << a.name << " " << key;
+    EXPECT_EQ(a.recipe.empty(), a.in_paper || a.name == "rapid-rl-return") << a.name;
     EXPECT_EQ(a.uses_returns, a.name == "rapid-rl-return") << a.name;
   }
   EXPECT_EQ(find_algorithm("col-prior").display_name, "CoL-prior");
@@ -264,7 +283,7 @@ TEST(Registry, AlgorithmsIgnoreTheKeysOfOtherAlgorithms) {
   for (const auto& [key, set] : keys) EXPECT_TRUE(is_algorithm_key(key)) << key;
   for (const Algorithm& algo : algorithms())
     for (const auto& [key, set] : keys) {
-      AgentConfig low = small_config(), high = small_config();
+      AgentConfig low = recipe_config(algo.name), high = recipe_config(algo.name);
       low.return_horizon = high.return_horizon = 5;  // rapid-rl-return needs one
       set(low, false);
       set(high, true);
@@ -413,4 +432,166 @@ TEST(GradientDiagnostics, AreTheNormsOfBothTermsAtTheActorsOutputPerHalf) {
   EXPECT_TRUE(std::isnan(s.q_grad_prior));
   EXPECT_TRUE(std::isnan(s.bc_grad_prior));
   EXPECT_FALSE(std::isnan(s.q_grad_online));
+}
+
+// ---- The published RLPD (rlpd-sac) and TD3+BC on the composed backbone ----
+
+namespace {
+// An rlpd-sac agent with a small ensemble whose critics and actor are moved off their init.
+std::unique_ptr<RlpdSac> sac_agent(int members, int subset, float init_temperature = 0.7f) {
+  AgentConfig c = recipe_config("rlpd-sac");
+  c.critic_ensemble = members;
+  c.critic_subset = subset;
+  c.init_temperature = init_temperature;
+  auto a = std::make_unique<RlpdSac>(kObs, kAct, c, 17);
+  perturb(*a);
+  return a;
+}
+}  // namespace
+
+// The SAC actor loss (1/B) Σ [α·log π(a|s) − mean_i Q_i(s, a)], through the reparameterised
+// sample and the tanh correction, against finite differences with the noise held fixed.
+TEST(RlpdSac, ActorLossGradientAgreesWithFiniteDifferences) {
+  auto a = sac_agent(3, 2);
+  const Batch batch = hand_made_batch();
+  Mat noise(kAct, kBatch);
+  Rng rng(8);
+  TanhGaussian::draw_noise(rng, noise);
+  a->compute_actor_gradient(batch, noise);
+  const Vec grads = a->actor().grads();
+  ASSERT_GT(grads.norm(), 0.0f);
+  double numeric = 0;
+  for (Eigen::Index i = 0; i < grads.size(); ++i)
+    ASSERT_TRUE(test::central_difference_agrees(
+        [&] { return static_cast<double>(a->compute_actor_gradient(batch, noise)); }, &a->actor().params()[i],
+        grads[i], &numeric))
+        << "actor parameter " << i << ": analytic " << grads[i] << " numeric " << numeric;
+}
+
+// rlpd's temperature loss α·(H − H_target) in log α, the parameter Adam moves.
+TEST(RlpdSac, TemperatureLossGradientAgreesWithFiniteDifferences) {
+  const double log_alpha = std::log(0.7), h = 1e-3;
+  for (const float entropy : {-3.0f, -1.0f, 0.5f}) {
+    float grad = 0;
+    sac_agent(2, 2, static_cast<float>(std::exp(log_alpha)))->temperature_loss(entropy, &grad);
+    const auto loss_at = [&](double la) {
+      return static_cast<double>(sac_agent(2, 2, static_cast<float>(std::exp(la)))->temperature_loss(entropy, nullptr));
+    };
+    const double numeric = (loss_at(log_alpha + h) - loss_at(log_alpha - h)) / (2 * h);
+    EXPECT_TRUE(test::gradients_agree(grad, numeric)) << entropy << ": " << grad << " vs " << numeric;
+  }
+  // The target entropy is −A/2 by the recipe, and the temperature starts at init_temperature.
+  auto a = sac_agent(2, 2, 0.7f);
+  EXPECT_FLOAT_EQ(a->target_entropy(), -0.5f * kAct);
+  EXPECT_FLOAT_EQ(a->temperature(), 0.7f);
+}
+
+// The target's minimum is over exactly M members, drawn afresh each step from the agent's update
+// stream, stream_seed(init seed, Stream::kUpdate): recomputed here from that stream alone.
+TEST(CriticEnsembleTarget, TakesTheMinimumOverMMembersDrawnFromTheRunsOwnStream) {
+  AgentConfig c = recipe_config("td3-bc");
+  c.critic_ensemble = 5;
+  c.critic_subset = 2;
+  c.target_noise = 0.0f;  // no smoothing, so the subset is the only draw
+  auto a = find_algorithm("td3-bc").make(kObs, kAct, c, 17);
+  const Batch batch = hand_made_batch();
+  Rng stream(stream_seed(17, Stream::kUpdate));
+  Mat sa(kObs + kAct, kBatch);
+  sa << batch.next_obs, a->actor_target().forward(batch.next_obs);
+  bool some_step_differs_from_all_members = false;
+  for (int step = 0; step < 6; ++step) {
+    const RowVec y = a->critic_targets(batch);
+    std::vector<int> chosen;
+    a->target_critics().draw_subset(stream, 2, chosen);
+    RowVec subset_min = RowVec::Constant(kBatch, std::numeric_limits<float>::infinity());
+    RowVec all_min = subset_min;
+    for (int m = 0; m < 5; ++m) {
+      Mlp member = a->target_critics().member(m);
+      const RowVec q = member.forward(sa).row(0);
+      all_min = all_min.cwiseMin(q);
+      if (std::find(chosen.begin(), chosen.end(), m) != chosen.end()) subset_min = subset_min.cwiseMin(q);
+    }
+    const RowVec expected = batch.rew.array() + c.gamma * batch.not_terminal.array() * subset_min.array();
+    EXPECT_TRUE(y.isApprox(expected, 1e-6f)) << "step " << step;
+    some_step_differs_from_all_members = some_step_differs_from_all_members || !y.isApprox(
+        (batch.rew.array() + c.gamma * batch.not_terminal.array() * all_min.array()).matrix(), 1e-6f);
+  }
+  EXPECT_TRUE(some_step_differs_from_all_members);
+}
+
+// TD3's schedule: the critics every step, the actor and both targets once per policy_delay steps.
+TEST(Td3Bc, MovesTheActorAndTheTargetsOncePerPolicyDelay) {
+  auto a = agent("td3-bc");
+  const Batch batch = hand_made_batch();
+  for (int step = 1; step <= 4; ++step) {
+    const Vec actor = a->actor().params(), critic = a->critic().params();
+    const Vec actor_target = a->actor_target().params(), critic_target = a->target_critics().member(0).params();
+    const UpdateStats s = a->update(batch);
+    const bool delayed_step = step % 2 == 0;
+    EXPECT_EQ(s.actor_updated, delayed_step) << step;
+    EXPECT_NE(a->critic().params(), critic) << step;
+    EXPECT_EQ(a->actor().params() != actor, delayed_step) << step;
+    EXPECT_EQ(a->actor_target().params() != actor_target, delayed_step) << step;
+    EXPECT_EQ(a->target_critics().member(0).params() != critic_target, delayed_step) << step;
+  }
+}
+
+// TD3+BC's imitation term is F.mse_loss(π(s), a): the mean over the batch and the action entries.
+TEST(Td3Bc, ImitationTermIsTheMeanSquaredErrorOverBatchAndActionEntries) {
+  const Batch batch = hand_made_batch();
+  auto a = agent("td3-bc");
+  const Mat pi = a->actor().forward(batch.obs);
+  const double mse = (pi - batch.act).squaredNorm() / static_cast<double>(kBatch * kAct);
+  const float lambda = a->q_weight(batch);
+  const double loss = a->compute_actor_gradient(batch, lambda);
+  EXPECT_NEAR(loss, -lambda * q_of_policy(*a, batch).mean() + mse, 1e-5);
+  EXPECT_NE(lambda, 1.0f);  // the recipe's α = 2.5 normalises the Q term
+}
+
+// RLPD's schedule: utd_ratio critic steps (each moving the critics' targets), then one actor and
+// one temperature step.
+TEST(RlpdSac, TakesUtdRatioCriticStepsPerActorStep) {
+  AgentConfig c = recipe_config("rlpd-sac");
+  c.utd_ratio = 3;
+  c.critic_ensemble = 4;
+  RlpdSac a(kObs, kAct, c, 17);
+  const Batch batch = hand_made_batch();
+  for (int step = 1; step <= 6; ++step) {
+    const Vec actor = a.actor().params(), target = a.target_critics().member(2).params();
+    const float temperature = a.temperature();
+    const UpdateStats s = a.update(batch);
+    const bool actor_step = step % 3 == 0;
+    EXPECT_EQ(s.actor_updated, actor_step) << step;
+    EXPECT_EQ(a.actor().params() != actor, actor_step) << step;
+    EXPECT_EQ(a.temperature() != temperature, actor_step) << step;
+    EXPECT_NE(a.target_critics().member(2).params(), target) << step;
+    EXPECT_TRUE(s.finite);
+  }
+}
+
+// Evaluations and checkpoints use tanh(μ(s)); exploration samples around it within (−1, 1).
+TEST(RlpdSac, ActsWithTheMeanAndSavesThatPolicy) {
+  auto a = sac_agent(2, 2);
+  const Batch batch = hand_made_batch();
+  a->update(batch);  // utd 20: a critic step only
+  for (int i = 0; i < 20; ++i) a->update(batch);  // and an actor step among them
+  const Vec obs = batch.obs.col(3);
+  Mat mean;
+  TanhGaussian::mean_action(a->actor().forward(obs), mean);
+  EXPECT_TRUE(a->act(obs).isApprox(mean, 1e-6f));
+  const std::string path = ::testing::TempDir() + "/sac_policy.ckpt";
+  a->save_policy(path, 1);
+  Mlp saved = Mlp::load(path);
+  EXPECT_EQ(saved.output_dim(), kAct);
+  EXPECT_TRUE(saved.forward(obs).isApprox(mean, 1e-6f));
+  Rng rng(4);
+  Vec action(kAct);
+  Vec sum = Vec::Zero(kAct);
+  for (int i = 0; i < 200; ++i) {
+    a->explore(obs, rng, action);
+    EXPECT_TRUE((action.array().abs() < 1.0f).all());
+    EXPECT_FALSE(action.isApprox(mean.col(0), 1e-3f));
+    sum += action;
+  }
+  EXPECT_GT((sum / 200.0f - mean.col(0)).norm(), 0.0f);
 }

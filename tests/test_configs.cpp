@@ -8,6 +8,8 @@
 
 #include "envs/env.hpp"
 #include "envs/scenario_settings.hpp"
+#include "algos/registry.hpp"
+#include "experiments/run/job.hpp"
 #include "experiments/run/run_config.hpp"
 
 using namespace rapid;
@@ -178,7 +180,9 @@ TEST(DefaultConfigs, AnOptionalKeyMayBeLeftOutAndThenHoldsItsNeutralValue) {
 // The real optional keys: no config file has them, and a config resolved from a file without one
 // does not have it either, so their arrival changed no config hash; given, they are checked.
 TEST(DefaultConfigs, OptionalKeysLeftOutOfAFileStayOutOfTheResolvedConfig) {
-  for (const char* name : {"bc_q_alpha", "return_horizon"}) {
+  for (const char* name : {"bc_q_alpha", "return_horizon", "utd_ratio", "critic_ensemble", "critic_subset",
+                           "policy_delay", "target_noise", "target_noise_clip", "init_temperature",
+                           "target_entropy_per_dim"}) {
     SCOPED_TRACE(name);
     ASSERT_TRUE(find_config_key(name)->optional());
     for (const auto& [p, s] : config_files()) {
@@ -239,3 +243,55 @@ TEST(ScenarioKeys, BadValuesAreRefusedNamingTheKey) {
   EXPECT_EQ(message("merge", {{"horizon", 100}}), "no error");
 }
 
+
+// An algorithm's recipe fills its own keys where the config leaves them out; a key the config
+// gives wins; and an algorithm never sees the optional keys it does not list, so what a shared
+// config sets for rlpd-sac or td3-bc cannot change the paper's five.
+TEST(AlgorithmConfig, TheRecipeFillsOwnKeysAndOtherAlgorithmsKeysAreDropped) {
+  const nlohmann::json plain = default_config_json("pendulum");
+  const AgentConfig sac = check_config_fits("rlpd-sac", plain, "pendulum").agent;
+  EXPECT_EQ(sac.utd_ratio, 20);
+  EXPECT_EQ(sac.critic_ensemble, 10);
+  EXPECT_EQ(sac.critic_subset, 2);
+  EXPECT_EQ(sac.init_temperature, 1.0f);
+  EXPECT_EQ(sac.target_entropy_per_dim, -0.5f);
+  EXPECT_EQ(sac.policy_delay, 1);  // td3-bc's key: neutral
+  const AgentConfig td3 = check_config_fits("td3-bc", plain, "pendulum").agent;
+  EXPECT_EQ(td3.critic_ensemble, 2);
+  EXPECT_EQ(td3.critic_subset, 2);
+  EXPECT_EQ(td3.policy_delay, 2);
+  EXPECT_EQ(td3.target_noise, 0.2f);
+  EXPECT_EQ(td3.target_noise_clip, 0.5f);
+  EXPECT_EQ(td3.bc_q_alpha, 2.5f);
+  EXPECT_EQ(td3.utd_ratio, 1);
+
+  nlohmann::json shared = plain;
+  shared["critic_ensemble"] = 4;
+  shared["utd_ratio"] = 3;
+  shared["bc_q_alpha"] = 1.5;
+  EXPECT_EQ(check_config_fits("rlpd-sac", shared, "pendulum").agent.critic_ensemble, 4);
+  EXPECT_EQ(check_config_fits("rlpd-sac", shared, "pendulum").agent.utd_ratio, 3);
+  EXPECT_EQ(check_config_fits("td3-bc", shared, "pendulum").agent.bc_q_alpha, 1.5f);
+  EXPECT_EQ(check_config_fits("td3-bc", shared, "pendulum").agent.utd_ratio, 1);
+  for (const char* algo : {"ddpg", "rlpd", "col-all", "rapid-rl"}) {
+    const AgentConfig a = check_config_fits(algo, shared, "pendulum").agent;
+    EXPECT_EQ(a.critic_ensemble, 1) << algo;
+    EXPECT_EQ(a.utd_ratio, 1) << algo;
+    EXPECT_EQ(a.bc_q_alpha, find_algorithm(algo).reads("bc_q_alpha") ? 1.5f : 0.0f) << algo;
+  }
+  // The recipe's keys are not part of the job's config (nor its hash): with_recipe adds them.
+  EXPECT_FALSE(plain.contains("utd_ratio"));
+  EXPECT_EQ(with_recipe(plain, "rlpd-sac")["utd_ratio"], 20);
+  EXPECT_FALSE(with_recipe(shared, "ddpg").contains("critic_ensemble"));
+
+  nlohmann::json bad = plain;
+  bad["critic_subset"] = 3;
+  bad["critic_ensemble"] = 2;
+  try {
+    check_config_fits("rlpd-sac", bad, "pendulum");
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "algorithm 'rlpd-sac': config key 'critic_subset' (3) exceeds 'critic_ensemble' (2)");
+  }
+  EXPECT_NO_THROW(check_config_fits("ddpg", bad, "pendulum"));  // not its keys
+}

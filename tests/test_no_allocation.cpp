@@ -11,6 +11,7 @@
 #include "core/mlp.hpp"
 #include "core/replay_buffer.hpp"
 #include "tests/alloc_counter.hpp"
+#include "tests/recipe_config.hpp"
 
 using namespace rapid;
 
@@ -62,7 +63,7 @@ TEST(NoAllocation, ReplayInsertionWrapsAroundWithoutAllocating) {
   EXPECT_EQ(buffer.size(), 64u);
 }
 
-// One full ActorCritic::update (actor step, critic step, both Polyak updates) per algorithm, at the
+// Full ActorCritic::update calls (actor step, critic step, Polyak updates) per algorithm, at the
 // driving scenarios' default sizes (experiments/configs: 128-128, batch 128; 18 observations), with
 // the Q term's normalisation (bc_q_alpha) off and on.
 class UpdateAllocation : public ::testing::TestWithParam<std::tuple<std::string, float>> {};
@@ -81,6 +82,8 @@ TEST_P(UpdateAllocation, GradientUpdateAllocatesNothingAfterWarmUp) {
   config.epsilon = 0.0f;
   config.bc_q_alpha = bc_q_alpha;
   config.return_horizon = 20;
+  config = test::with_recipe(config, name);  // rlpd-sac's and td3-bc's ensembles and schedules
+  if (config.bc_q_alpha == 0.0f) config.bc_q_alpha = bc_q_alpha;
   const Algorithm& algo = find_algorithm(name);
   auto agent = algo.make(obs_dim, act_dim, config, 5);
   const int window = algo.return_window(config);
@@ -102,9 +105,11 @@ TEST_P(UpdateAllocation, GradientUpdateAllocatesNothingAfterWarmUp) {
     agent->update(batch);
     agent->act(obs);  // the trainer acts between updates (syncs the acting copy of the actor)
   };
-  train_step();  // sizes every buffer
+  // Warm-up sizes every buffer: two of rlpd-sac's actor steps (one per utd_ratio = 20 calls),
+  // and every member of its ensemble drawn into a target subset at least once.
+  for (int i = 0; i < 50; ++i) train_step();
   test::start_counting_allocations();
-  for (int i = 0; i < 3; ++i) train_step();
+  for (int i = 0; i < 25; ++i) train_step();  // an actor step among them for every algorithm
   EXPECT_EQ(test::stop_counting_allocations(), 0u) << name;
 }
 

@@ -128,11 +128,11 @@ TrainBenchResult bench_train(const std::string& scenario, const RunConfig& defau
 
     const TrajectoryCost alone = recorder.replay(*env);
     const UpdateBenchResult u = bench_update(o.algo, obs_dim, act_dim, config.agent, update_options);
-    const double predicted = alone.step_s + alone.reset_s + static_cast<double>(log.updates) * u.update_s;
+    const double predicted = alone.step_s + alone.reset_s + static_cast<double>(log.learning_steps) * u.update_s;
 
     res.env_steps = alone.steps;
     res.resets = alone.resets;
-    res.updates = log.updates;
+    res.updates = log.learning_steps;
     train_s.push_back(wall);
     predicted_s.push_back(predicted);
     ratios.push_back(predicted / wall);

@@ -66,9 +66,13 @@ int run_bench(const BenchOptions& o) {
       configs.emplace(s, run_config_from_json(default_config_json(s, o.profile), s));
     }
   });
+  // What each algorithm trains with: the scenarios' config files as they are, its recipe applied,
+  // which must give it every key it needs.
+  const auto config_of = [&](const std::string& algo, const std::string& s) {
+    return run_config_from_json(with_recipe(default_config_json(s, o.profile), algo), s);
+  };
   check_option("--train-algo", [&] {
-    // It trains on the scenarios' config files as they are, which must give it every key it needs.
-    for (const std::string& s : scenarios) check_config_fits(o.train_algo, configs.at(s));
+    for (const std::string& s : scenarios) check_config_fits(o.train_algo, default_config_json(s, o.profile), s);
   });
   if (!o.json_file.empty()) check_output_file("--json", o.json_file);  // before minutes of measuring
   const BenchPlan plan = make_plan(o.quick);
@@ -91,7 +95,8 @@ int run_bench(const BenchOptions& o) {
     const auto env = make_run_env(report.update_scenario, config);
     for (const std::string& algo : algo_names()) {
       std::cerr << "bench: " << algo << ": updates vs GEMM\n";
-      report.algorithms.push_back(bench::bench_update(algo, env->obs_dim(), env->act_dim(), config.agent, plan.update));
+      report.algorithms.push_back(bench::bench_update(algo, env->obs_dim(), env->act_dim(),
+                                                      config_of(algo, report.update_scenario).agent, plan.update));
     }
   }
 
@@ -101,7 +106,7 @@ int run_bench(const BenchOptions& o) {
     sb.train_algo = o.train_algo;
     bench::TrainBenchOptions train = plan.train;
     train.algo = o.train_algo;
-    sb.train = bench::bench_train(s, configs.at(s), train);
+    sb.train = bench::bench_train(s, config_of(o.train_algo, s), train);
   }
 
   if (o.quick || o.no_sweep) {

@@ -177,6 +177,25 @@ const std::vector<ConfigKey>& config_keys() {
       optional_key("return_horizon", &AgentConfig::return_horizon, kPositive, 0,
                    "RAPID-RL (return)'s window n: it imitates a transition by relu(Ḡ − ε), Ḡ the mean reward "
                    "over the next n decisions of its episode; absent: not given, and rapid-rl-return refuses to run"),
+      optional_key("utd_ratio", &AgentConfig::utd_ratio, kPositive, 1,
+                   "learning steps per decision, each on a fresh batch (RLPD's update-to-data ratio); rlpd-sac's "
+                   "recipe: 20; absent: 1"),
+      optional_key("critic_ensemble", &AgentConfig::critic_ensemble, kPositive, 1,
+                   "number N of critics; the actor's Q term reads the first (TD3's Q1), rlpd-sac's their mean; "
+                   "recipes: td3-bc 2, rlpd-sac 10; absent: 1"),
+      optional_key("critic_subset", &AgentConfig::critic_subset, kPositive, 1,
+                   "target critics M ≤ N drawn afresh per step, the target taking their minimum (M = N: all, "
+                   "undrawn); recipes: td3-bc 2, rlpd-sac 2; absent: 1"),
+      optional_key("policy_delay", &AgentConfig::policy_delay, kPositive, 1,
+                   "td3-bc: the actor and the targets move once per this many critic steps; recipe: 2"),
+      optional_key("target_noise", &AgentConfig::target_noise, kNonNegative, 0.0f,
+                   "td3-bc: std of the Gaussian noise on the target action (target policy smoothing); recipe: 0.2"),
+      optional_key("target_noise_clip", &AgentConfig::target_noise_clip, kNonNegative, 0.0f,
+                   "td3-bc: the target noise clipped to ±this; recipe: 0.5"),
+      optional_key("init_temperature", &AgentConfig::init_temperature, kPositive, 0.0f,
+                   "rlpd-sac: the entropy temperature α at the start (learned from there); recipe: 1"),
+      optional_key("target_entropy_per_dim", &AgentConfig::target_entropy_per_dim, kAny, 0.0f,
+                   "rlpd-sac: the temperature's target entropy is this × the action dimension; recipe: -0.5"),
       key("steps", &RunConfig::steps, kPositive, "environment decisions of training"),
       key("warmup_steps", &RunConfig::warmup_steps, kNonNegative,
           "decisions of uniform-random actions, without updates, before learning starts; 0: none, π(s) + noise "

@@ -1,5 +1,6 @@
 #include "experiments/run/job.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "algos/registry.hpp"
@@ -14,8 +15,24 @@ void check_dataset_fits(const std::string& algo, bool has_dataset) {
   if (!needs && has_dataset) throw std::invalid_argument("algorithm '" + algo + "' takes no dataset");
 }
 
-void check_config_fits(const std::string& algo, const RunConfig& config) {
-  find_algorithm(algo).return_window(config.agent);
+nlohmann::json with_recipe(const nlohmann::json& config, const std::string& algo) {
+  const Algorithm& a = find_algorithm(algo);
+  nlohmann::json with = config;
+  for (const ConfigKey& key : config_keys())
+    if (key.optional() && !a.reads(key.name)) with.erase(key.name);
+  for (const auto& [key, value] : a.recipe) {
+    if (with.contains(key)) continue;
+    // A whole number goes in as an integer, which integer keys require and number keys accept.
+    if (value == std::floor(value)) with[key] = static_cast<long>(value);
+    else with[key] = value;
+  }
+  return with;
+}
+
+RunConfig check_config_fits(const std::string& algo, const nlohmann::json& config, const std::string& scenario) {
+  RunConfig parsed = run_config_from_json(with_recipe(config, algo), scenario);
+  find_algorithm(algo).check(parsed.agent);
+  return parsed;
 }
 
 std::string job_config_hash(const JobSpec& spec) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "experiments/run/config_keys.hpp"
+#include "experiments/run/run_config.hpp"
 
 namespace rapid {
 
@@ -37,9 +38,14 @@ struct JobSpec {
 // dataset").
 void check_dataset_fits(const std::string& algo, bool has_dataset);
 
-// An algorithm may need keys a config may leave out: rapid-rl-return needs return_horizon (its
-// registry row). Throws std::invalid_argument("algorithm 'X' needs config key 'K' (…)").
-void check_config_fits(const std::string& algo, const RunConfig& config);
+// `config` (a resolved config) as `algo` runs it: without the optional keys it does not read
+// (another algorithm's backbone pieces: utd_ratio, critic_ensemble, …; they take their neutral
+// values, so the paper's five run the same bits whatever a shared config sets for rlpd-sac), and
+// with its recipe (algos/registry.hpp) where it leaves one of its own keys out. The job's config
+// and hash stay the resolved config; the record lists what the recipe added (run_job.cpp).
+nlohmann::json with_recipe(const nlohmann::json& config, const std::string& algo);
+
+RunConfig check_config_fits(const std::string& algo, const nlohmann::json& config, const std::string& scenario);
 
 // The hash that says whether a finished record still answers this job: the cell, the resolved
 // config and the dataset file's content. Code revision is deliberately not part of it.

@@ -80,7 +80,7 @@ void finish_record(nlohmann::json& record, const TrainLog& log, int last_k, doub
   record["updates"] = log.updates;
   record["timing"] = {{"wall_s", wall_s},
                       {"env_steps_per_s", log.env_seconds > 0 ? log.env_steps / log.env_seconds : 0.0},
-                      {"updates_per_s", log.update_seconds > 0 ? log.updates / log.update_seconds : 0.0},
+                      {"updates_per_s", log.update_seconds > 0 ? log.learning_steps / log.update_seconds : 0.0},
                       {"eval_s", log.eval_seconds},
                       {"train_steps_per_s", wall_s > 0 ? log.env_steps / wall_s : 0.0}};
   record["provenance"]["end_time"] = utc_now_iso8601();

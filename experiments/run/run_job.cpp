@@ -39,7 +39,8 @@ ReplayBuffer load_prior(const JobSpec& spec, const Env& env, const Algorithm& al
 }  // namespace
 
 int run_job(const JobSpec& spec) {
-  const RunConfig config = run_config_from_json(spec.config, spec.scenario);
+  // The algorithm's recipe fills the keys the config leaves out (job.hpp); the record says which.
+  const RunConfig config = check_config_fits(spec.algo, spec.config, spec.scenario);
   std::unique_ptr<Env> env = make_run_env(spec.scenario, config);
   const Algorithm& algo = find_algorithm(spec.algo);
   check_dataset_fits(spec.algo, !spec.dataset_path.empty());
@@ -48,6 +49,11 @@ int run_job(const JobSpec& spec) {
   remove_leftovers(spec);
 
   nlohmann::json record = start_record(spec);
+  const nlohmann::json with = with_recipe(spec.config, spec.algo);
+  nlohmann::json filled = nlohmann::json::object();
+  for (const auto& [key, value] : algo.recipe)
+    if (!spec.config.contains(key)) filled[key] = with[key];
+  if (!filled.empty()) record["recipe"] = filled;
   const auto t0 = Clock::now();
   TrainLog log;
   try {
@@ -61,14 +67,14 @@ int run_job(const JobSpec& spec) {
     TrainHooks hooks;
     hooks.checkpoint_steps = spec.checkpoint_steps;
     hooks.checkpoint = [&](long step, long updates) {
-      agent->actor().save(checkpoint_file(spec.out_dir, step), updates);
+      agent->save_policy(checkpoint_file(spec.out_dir, step), updates);
     };
     hooks.progress = [&](long step, const TrainLog& l) {
       const double s = seconds_since(t0);
       write_progress(spec.out_dir, step, config.steps, s > 0 ? l.env_steps / s : 0.0);
     };
     train(*env, *agent, algo.uses_prior ? &prior : nullptr, return_window, config, spec.seed, log, hooks);
-    agent->actor().save(spec.out_dir + "/" + job_files::kActor, log.updates);
+    agent->save_policy(spec.out_dir + "/" + job_files::kActor, log.updates);
     record["status"] = "ok";
   } catch (const DivergedError& e) {
     record["status"] = "diverged";

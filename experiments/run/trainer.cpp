@@ -10,35 +10,38 @@ namespace rapid {
 
 namespace {
 
-// Running means of UpdateStats over one logging window.
+// Running means of UpdateStats over one logging window: the critic's over every learning step,
+// the actor's over the steps that updated it (all of them for the paper's five).
 struct LossWindow {
   double bc_prior = 0, bc_online = 0, critic = 0, actor = 0, q = 0;
   double q_grad_prior = 0, q_grad_online = 0, bc_grad_prior = 0, bc_grad_online = 0;
-  long n = 0;
+  long n = 0, n_actor = 0;
   void add(const UpdateStats& s) {
+    critic += s.critic_loss;
+    q += s.q_mean;
+    ++n;
+    if (!s.actor_updated) return;
     bc_prior += s.bc_prior;
     bc_online += s.bc_online;
-    critic += s.critic_loss;
     actor += s.actor_loss;
-    q += s.q_mean;
     q_grad_prior += s.q_grad_prior;
     q_grad_online += s.q_grad_online;
     bc_grad_prior += s.bc_grad_prior;
     bc_grad_online += s.bc_grad_online;
-    ++n;
+    ++n_actor;
   }
   LossPoint flush(long step) {
-    const double k = static_cast<double>(n);
+    const double k = static_cast<double>(n), ka = static_cast<double>(n_actor);
     LossPoint p{step,
-                bc_prior / k,
-                bc_online / k,
+                bc_prior / ka,
+                bc_online / ka,
                 critic / k,
-                actor / k,
+                actor / ka,
                 q / k,
-                q_grad_prior / k,
-                q_grad_online / k,
-                bc_grad_prior / k,
-                bc_grad_online / k};
+                q_grad_prior / ka,
+                q_grad_online / ka,
+                bc_grad_prior / ka,
+                bc_grad_online / ka};
     *this = {};
     return p;
   }
@@ -147,18 +150,15 @@ class TrainingRun {
   }
 
  private:
-  // Uniform random during the warm-up (if the config has one), then π(s) plus Gaussian noise,
-  // clipped to [-1, 1].
+  // Uniform random during the warm-up (if the config has one), then the agent's exploring action
+  // (π(s) plus Gaussian noise, clipped to [-1, 1]; a sample of SAC's policy).
   void choose_action(long t) {
     const int act_dim = static_cast<int>(action_.size());
     if (t < config_.warmup_steps) {
       for (int i = 0; i < act_dim; ++i) action_[i] = static_cast<float>(explore_rng_.uniform(-1.0, 1.0));
       return;
     }
-    action_ = agent_.act(obs_).col(0);
-    for (int i = 0; i < act_dim; ++i)
-      action_[i] =
-          std::clamp(action_[i] + static_cast<float>(explore_rng_.normal(0.0, config_.agent.noise_std)), -1.0f, 1.0f);
+    agent_.explore(obs_, explore_rng_, action_);
   }
 
   // One decision in the environment: the transition goes into the online buffer and the episode.
@@ -175,18 +175,21 @@ class TrainingRun {
     return r;
   }
 
-  // One gradient step on a fresh batch (one per decision from first_update_ on). A NaN or inf
-  // loss ends the run as diverged.
+  // utd_ratio learning steps, each on a fresh batch (one per decision from first_update_ on; the
+  // paper's algorithms take one). A NaN or inf loss ends the run as diverged.
   void learn(long done_steps) {
-    const auto t0 = Clock::now();
-    sampler_.sample(sample_rng_, batch_);
-    const UpdateStats s = agent_.update(batch_);
-    log_.update_seconds += seconds_since(t0);
-    ++log_.updates;
-    if (!s.finite)
-      throw DivergedError("training diverged at step " + std::to_string(done_steps) + ": critic loss " +
-                          std::to_string(s.critic_loss) + ", actor loss " + std::to_string(s.actor_loss));
-    window_.add(s);
+    for (int k = 0; k < config_.agent.utd_ratio; ++k) {
+      const auto t0 = Clock::now();
+      sampler_.sample(sample_rng_, batch_);
+      const UpdateStats s = agent_.update(batch_);
+      log_.update_seconds += seconds_since(t0);
+      ++log_.learning_steps;
+      if (s.actor_updated) ++log_.updates;
+      if (!s.finite)
+        throw DivergedError("training diverged at step " + std::to_string(done_steps) + ": critic loss " +
+                            std::to_string(s.critic_loss) + ", actor loss " + std::to_string(s.actor_loss));
+      window_.add(s);
+    }
   }
 
   // The mean losses of the window that just ended, once no weight has become NaN or inf.

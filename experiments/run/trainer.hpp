@@ -48,7 +48,9 @@ struct TrainLog {
   std::optional<EvalResult> final_eval;
   std::vector<TrainEpisode> episodes;
   std::vector<LossPoint> losses;
-  long env_steps = 0, updates = 0;
+  long env_steps = 0;
+  long updates = 0;         // actor updates: the gradient steps that made the saved actor
+  long learning_steps = 0;  // ActorCritic::update calls (utd_ratio per decision; = updates for the paper's five)
   double env_seconds = 0, update_seconds = 0, eval_seconds = 0;
 };
 

@@ -348,7 +348,7 @@ void check_algorithms_fit(const GridChecker& check, const Grid& grid) {
       const Algorithm& info = find_algorithm(algo);
       for (const AxisPoint& point : axis_points(grid, scenario, [&](const std::string& key) { return info.reads(key); })) {
         try {
-          check_config_fits(algo, run_config_from_json(cell_config(grid, scenario, point), scenario));
+          check_config_fits(algo, cell_config(grid, scenario, point), scenario);
         } catch (const std::invalid_argument& e) {
           check.fail("algos", e.what());
         }

@@ -3,7 +3,9 @@
 #include <sys/stat.h>
 
 #include <csignal>
+#include <cstdlib>
 #include <ctime>
+#include <thread>
 
 #include "core/clock.hpp"
 #include "experiments/run/provenance.hpp"
@@ -34,6 +36,18 @@ struct JobRun {
 
 bool unsuccessful(Phase p) { return p == Phase::kFailed || p == Phase::kDiverged || p == Phase::kBlocked; }
 
+// A job's OpenMP threads (a critic ensemble's members, core/critic_ensemble.hpp) share the cores
+// with the other jobs running beside it: each child gets OMP_NUM_THREADS = cores / workers (at
+// least 1) unless the user set it. Threads beyond the cores would spin against each other.
+// Results do not depend on the count. Set in this process before any child starts, so every
+// child inherits it; this process's own OpenMP runtime read its environment when it loaded.
+void share_cores_among_jobs(int workers) {
+  if (std::getenv("OMP_NUM_THREADS") != nullptr) return;
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const std::string threads = std::to_string(std::max(1, cores / std::max(1, workers)));
+  ::setenv("OMP_NUM_THREADS", threads.c_str(), /*overwrite=*/0);
+}
+
 class LocalRunner {
  public:
   LocalRunner(const SweepFolder& folder, const LocalSweepOptions& options)
@@ -51,6 +65,7 @@ class LocalRunner {
   }
 
   SweepReport run() {
+    share_cores_among_jobs(options_.workers);
     report_.workers = options_.workers;
     report_.only = options_.selection.text;
     report_.force = options_.force;

@@ -225,6 +225,8 @@ std::string sbatch_script(const SweepFolder& folder, const SlurmPlan& plan, std:
     s << "#SBATCH --dependency=afterok:" << after << "\n"
       << "#SBATCH --kill-on-invalid-dep=yes\n";
   }
+  // A job's OpenMP threads (a critic ensemble's members) use the CPUs of its task, no more.
+  s << "export OMP_NUM_THREADS=" << o.cpus_per_task << "\n";
   s << "exec " << shell_quote(o.binary) << " sweep . --run-job \"$SLURM_ARRAY_TASK_ID\" --job-list "
     << shell_quote(array.list) << "\n";
   return s.str();

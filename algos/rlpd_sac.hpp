@@ -1,0 +1,58 @@
+// RLPD as published (Ball et al. 2023; ikostrikov/rlpd's configs/rlpd_config.py, sac_config.py and
+// rlpd/agents/sac/sac_learner.py), beside the paper's reading of it (`rlpd`, the DDPG backbone on
+// symmetric batches): SAC with a tanh-squashed Gaussian actor and a learned entropy temperature
+// (init_temperature 1, target entropy −A/2, the entropy in the critic's target), an ensemble of
+// critic_ensemble = 10 LayerNorm critics whose target is the minimum over critic_subset = 2 drawn
+// per step, and utd_ratio = 20 critic steps per decision (the critics' targets move after each),
+// then one actor step and one temperature step on the last batch. Its recipe (algos/registry.cpp)
+// gives these values where a config leaves the keys out; networks, batch, learning rates and
+// budget are the config's, as for every algorithm, so only the method differs (docs/algorithms.md).
+//
+// Evaluations and checkpoints use the deterministic policy tanh(μ(s)); exploration samples the
+// Gaussian with the trainer's exploration stream.
+#pragma once
+
+#include "algos/actor_critic.hpp"
+#include "core/tanh_gaussian.hpp"
+
+namespace rapid {
+
+class RlpdSac : public ActorCritic {
+ public:
+  RlpdSac(int obs_dim, int act_dim, const AgentConfig& config, std::uint64_t init_seed);
+
+  void explore(const ConstVecRef& obs, Rng& rng, Vec& action) override;
+  UpdateStats update(const Batch& batch) override;
+  // y = r + γ·(1 − terminal)·(min over the subset of Q'_j(s', a') − α·log π(a'|s')), a' ~ π(·|s').
+  const RowVec& critic_targets(const Batch& batch) override;
+
+  // The actor loss (1/B) Σ [α·log π(a_b|s_b) − (1/N) Σ_i Q_i(s_b, a_b)], a_b = tanh(μ + σ·noise_b),
+  // for a given A × B `noise`: writes its gradient into actor().grads() and returns the loss;
+  // changes no parameter (for the finite-difference test).
+  float compute_actor_gradient(const Batch& batch, const Mat& noise);
+  // The same with noise drawn from the update stream, as an actor step draws it.
+  float compute_actor_gradient(const Batch& batch) override;
+  // The temperature loss α·(H − H_target) at entropy H, its gradient with respect to log α
+  // written into *grad; changes nothing.
+  float temperature_loss(float entropy, float* grad) const;
+  float temperature() const;
+  float target_entropy() const { return target_entropy_; }
+
+ protected:
+  void sync_acting() override;
+
+ private:
+  float actor_gradient(const Batch& batch, UpdateStats& stats);
+  void actor_and_temperature_step(const Batch& batch, UpdateStats& stats);
+
+  Mlp sampling_actor_;  // a batch-1 copy of the Gaussian actor, for exploration
+  TanhGaussian policy_, next_policy_, exploring_;
+  Vec log_temperature_, temperature_grad_;
+  Adam temperature_opt_;
+  float target_entropy_;
+  long critic_steps_ = 0;
+  Mat noise_, single_noise_, d_q_, d_action_, mean_action_;
+  RowVec y_targets_, d_log_prob_, grad_norm_;
+};
+
+}  // namespace rapid
