@@ -131,13 +131,11 @@ JobSpec reference_job(const DatasetBuildSpec& spec, const DatasetFolder& folder,
 
 // Stage 1: trains the reference agent unless its record and checkpoints are up to date. False
 // when it failed (its record says why).
-bool train_reference(const DatasetBuildSpec& spec, const JobSpec& ref, const std::string& ref_hash,
-                     const std::vector<Source>& srcs, long steps) {
-  bool have_checkpoints = true;
-  for (const Source& s : srcs)
-    have_checkpoints = have_checkpoints && checkpoint_has_learned(checkpoint_path(ref.out_dir, s.step, steps));
+bool train_reference(const DatasetBuildSpec& spec, const DatasetFolder& folder, const JobSpec& ref,
+                     const std::string& ref_hash, long budget, long steps) {
   const std::string ref_record = ref.out_dir + "/" + job_files::kRecord;
-  if (!spec.force && record_is_done(ref_record, ref_hash) && have_checkpoints) return true;
+  if (!spec.force && record_is_done(ref_record, ref_hash) && reference_problem(folder, budget, steps).empty())
+    return true;
   std::cerr << "dataset build: training the reference agent for " << spec.scenario << " (" << steps << " steps)\n";
   if (run_job(ref) == 0) return true;
   std::cerr << "dataset build: the reference agent failed; see " << ref_record << "\n";
@@ -202,6 +200,20 @@ nlohmann::json check_quality(const std::string& scenario, const std::map<std::st
 
 }  // namespace
 
+std::vector<std::string> reference_checkpoints(const DatasetFolder& folder, long budget, long reference_steps) {
+  const long steps = reference_steps > 0 ? reference_steps : budget;
+  std::vector<std::string> paths;
+  for (const Source& s : sources(budget, steps)) paths.push_back(checkpoint_path(folder.reference(), s.step, steps));
+  return paths;
+}
+
+std::string reference_problem(const DatasetFolder& folder, long budget, long reference_steps) {
+  for (const std::string& path : reference_checkpoints(folder, budget, reference_steps))
+    if (!checkpoint_has_learned(path))
+      return "the reference checkpoint " + path + " is missing, unreadable or holds an actor without updates";
+  return "";
+}
+
 std::string datasets_problem(const DatasetFolder& folder, const std::vector<std::string>& names,
                              const std::string& scenario, const RunConfig& config) {
   const std::unique_ptr<Env> env = make_run_env(scenario, config);
@@ -244,7 +256,7 @@ int build_datasets(const DatasetBuildSpec& spec) {
   const std::vector<Source> srcs = sources(budget, steps);
   const JobSpec ref = reference_job(spec, folder, steps);
   const std::string ref_hash = job_config_hash(ref);
-  if (!train_reference(spec, ref, ref_hash, srcs, steps)) return 1;
+  if (!train_reference(spec, folder, ref, ref_hash, budget, steps)) return 1;
   if (spec.reference_only) return 0;
 
   // The datasets answer to the reference agent and the collection settings.

@@ -42,6 +42,16 @@ struct DatasetFolder {
 std::string datasets_problem(const DatasetFolder& folder, const std::vector<std::string>& names,
                              const std::string& scenario, const RunConfig& config);
 
+// Why the reference agent in `folder` cannot give the datasets as it is: the first of its source
+// checkpoints (1/10 and 1/2 of the budget T, and L = `reference_steps`, T when 0) that is missing,
+// corrupt or holds an actor without updates; "" when every one can. The one rule for when `rapid
+// dataset build` trains the reference again and when a sweep's reference job is done
+// (sweep/state.hpp), so a reference copied without its checkpoints is trained, not taken.
+std::string reference_problem(const DatasetFolder& folder, long budget, long reference_steps);
+
+// The paths of those source checkpoints, in the order initial, medium, final.
+std::vector<std::string> reference_checkpoints(const DatasetFolder& folder, long budget, long reference_steps);
+
 // The reference agent behind the datasets and how its data is collected (a grid's "reference").
 struct ReferenceSettings {
   std::uint64_t seed = 1000;   // its own seed, never one of the evaluation seeds

@@ -68,7 +68,9 @@ std::vector<std::string> compare_references(const SweepFolder& folder, const Swe
   for (const SweepJob& reference : folder.graph.jobs) {
     if (reference.kind != JobKind::kReference || !job_is_done(folder, reference)) continue;
     const fs::path agent = reference_agent_dir(reference);
-    if (!job_is_done(as_this_grid, reference)) {
+    // One FROM trained for these settings is compared even if a checkpoint of it no longer loads,
+    // so that the file that differs is named.
+    if (!stage_job_ran_for_current_inputs(as_this_grid, reference)) {
       differences.push_back(reference.id() + ": " + source.dir.string() + " has no reference for these settings");
       continue;
     }

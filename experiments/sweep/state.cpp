@@ -103,21 +103,25 @@ std::string marker_config_hash(const std::optional<nlohmann::json>& marker) {
 
 }  // namespace
 
-bool job_is_done(const SweepFolder& folder, const SweepJob& job) {
-  // A cell: the one judgement of its record that status and the reports share.
-  if (job.kind == JobKind::kCell) return read_cell_record(folder, job).done();
+bool stage_job_ran_for_current_inputs(const SweepFolder& folder, const SweepJob& job) {
   const auto marker = read_json_file(folder.path(job_marker_path(job)));
   if (!says_ok(marker)) return false;
   const auto outcome = read_outcome(folder, job);
-  if (!outcome || outcome->state != "ok" || outcome->inputs_hash != dataset_stage_inputs_hash(folder, job) ||
-      outcome->marker_hash != marker_config_hash(marker))
-    return false;
-  return job.kind != JobKind::kDatasets || dataset_job_problem(folder, job).empty();
+  return outcome && outcome->state == "ok" && outcome->inputs_hash == dataset_stage_inputs_hash(folder, job) &&
+         outcome->marker_hash == marker_config_hash(marker);
 }
 
-std::string dataset_job_problem(const SweepFolder& folder, const SweepJob& job) {
+bool job_is_done(const SweepFolder& folder, const SweepJob& job) {
+  // A cell: the one judgement of its record that status and the reports share.
+  if (job.kind == JobKind::kCell) return read_cell_record(folder, job).done();
+  return stage_job_ran_for_current_inputs(folder, job) && stage_job_problem(folder, job).empty();
+}
+
+std::string stage_job_problem(const SweepFolder& folder, const SweepJob& job) {
   const DatasetFolder datasets(folder.path(datasets_root(job.reference_point())).string(), job.scenario);
   const RunConfig config = run_config_from_json(cell_config(folder.grid, job.scenario, job.axis), job.scenario);
+  if (job.kind == JobKind::kReference)
+    return reference_problem(datasets, config.steps, reference_for(folder.grid, job.scenario).steps);
   return datasets_problem(datasets, folder.grid.datasets, job.scenario, config);
 }
 

@@ -57,13 +57,18 @@ std::optional<Outcome> read_outcome(const SweepFolder& folder, const SweepJob& j
 std::optional<nlohmann::json> read_json_file(const std::filesystem::path& path);
 
 // "Done" (docs/design.md §Sweeps): a cell's record is ok with the expected hash; a reference/dataset job's
-// marker is ok and its outcome says it ran for the grid's current inputs; a dataset job's
-// datasets also validate (dataset_job_problem).
+// marker is ok and its outcome says it ran for the grid's current inputs, and what it made can be
+// used (stage_job_problem).
 bool job_is_done(const SweepFolder& folder, const SweepJob& job);
 
-// For a dataset job: what is wrong with the datasets of the grid that it built, as `rapid dataset
-// build` judges them (datasets_problem: missing, or cut short, …); "" when nothing is.
-std::string dataset_job_problem(const SweepFolder& folder, const SweepJob& job);
+// For a reference or dataset job: its marker is ok and its outcome says it ran for the grid's
+// current inputs, whether or not what it made is still usable.
+bool stage_job_ran_for_current_inputs(const SweepFolder& folder, const SweepJob& job);
+
+// For a reference or dataset job: what is wrong with what it made, as `rapid dataset build` judges
+// it (reference_problem: a source checkpoint missing or without updates; datasets_problem: a
+// dataset missing or cut short, …); "" when nothing is.
+std::string stage_job_problem(const SweepFolder& folder, const SweepJob& job);
 
 // Notes a finished reference/dataset job as done for the current grid (the runner calls this
 // after the child succeeded; tests call it after providing the datasets themselves).

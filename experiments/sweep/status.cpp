@@ -61,8 +61,7 @@ class Inspector {
     const auto marker_path = folder_.path(job_marker_path(job));
     if (const auto failed = failed_attempt(i)) return *failed;
     if (mtime(marker_path) < 0) return waiting(i);
-    if (job.kind == JobKind::kDatasets)
-      if (std::string problem = dataset_job_problem(folder_, job); !problem.empty()) return {i, "stale", problem};
+    if (std::string problem = stage_job_problem(folder_, job); !problem.empty()) return {i, "stale", problem};
     return {i, "stale", "the grid changed since it ran (or it was built outside the sweep)"};
   }
 

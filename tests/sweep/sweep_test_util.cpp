@@ -15,6 +15,7 @@
 
 #include "core/dataset.hpp"
 #include "core/dataset_io.hpp"
+#include "core/mlp.hpp"
 #include "envs/env.hpp"
 #include "experiments/sweep/grid.hpp"
 #include "experiments/sweep/state.hpp"
@@ -159,6 +160,12 @@ void provide_datasets(const fs::path& sweep_dir, const fs::path& grid_path) {
       write_dataset((dir / (folder.grid.datasets[k] + ".h5")).string(), builder.finish({{"scenario", scenario}}));
     }
     write_json(dir / "reference" / "record.json", {{"status", "ok"}, {"config_hash", "test-reference"}});
+    // Its actor at every source step, saved as having learned: a reference is done only with them.
+    const RunConfig config = run_config_from_json(cell_config(folder.grid, scenario), scenario);
+    Mlp actor = Mlp::make(env->obs_dim(), {4}, env->act_dim(), /*layer_norm=*/false, /*tanh_output=*/true);
+    for (const std::string& path : reference_checkpoints(DatasetFolder((sweep_dir / "datasets").string(), scenario),
+                                                         config.steps, reference_for(folder.grid, scenario).steps))
+      actor.save(path, /*updates=*/1);
     write_json(dir / "build.json", {{"status", "ok"}, {"config_hash", "test-datasets"}});
   }
   for (const SweepJob& job : folder.graph.jobs)

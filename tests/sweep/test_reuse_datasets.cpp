@@ -23,6 +23,16 @@ std::string bytes_of(const fs::path& path) {
   return s.str();
 }
 
+// A folder of a sweep's reference agents alone, as results/references/ holds them: the grid and
+// each reference's agent folder (record and checkpoints) and job folder.
+void copy_references(const fs::path& sweep, const fs::path& refs) {
+  fs::create_directories(refs / "datasets/pendulum");
+  fs::copy(sweep / "grid.json", refs / "grid.json");
+  fs::copy(sweep / "datasets/pendulum/reference", refs / "datasets/pendulum/reference", fs::copy_options::recursive);
+  fs::create_directories(refs / "jobs/pendulum");
+  fs::copy(sweep / "jobs/pendulum/reference", refs / "jobs/pendulum/reference", fs::copy_options::recursive);
+}
+
 class ReuseDatasets : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -71,11 +81,7 @@ TEST_F(ReuseDatasets, AFolderOfReferencesAloneGivesItsAgentsAndTheDatasetsAreCol
   ASSERT_EQ(run_rapid("sweep " + grid_path.string() + " --jobs 2 --no-summary --out " + built.string()).exit_code, 0);
   const Dataset original = read_dataset((built / "datasets/pendulum/initial.h5").string());
   const fs::path refs = dir.path() / "refs";
-  fs::create_directories(refs / "datasets/pendulum");
-  fs::copy(built / "grid.json", refs / "grid.json");
-  fs::copy(built / "datasets/pendulum/reference", refs / "datasets/pendulum/reference", fs::copy_options::recursive);
-  fs::create_directories(refs / "jobs/pendulum");
-  fs::copy(built / "jobs/pendulum/reference", refs / "jobs/pendulum/reference", fs::copy_options::recursive);
+  copy_references(built, refs);
 
   const Result r = run_rapid("sweep " + grid_path.string() + " --jobs 1 --no-summary --out " + sweep.string() +
                              " --reuse-datasets " + refs.string());
@@ -115,6 +121,51 @@ TEST_F(ReuseDatasets, AFolderOfReferencesAloneGivesItsAgentsAndTheDatasetsAreCol
   const Result alone = run_rapid("sweep " + grid_path.string() + " --check-references --out " + (dir.path() / "x").string());
   EXPECT_EQ(alone.exit_code, 2);
   EXPECT_NE(alone.output.find("--check-references: needs --reuse-datasets FROM"), std::string::npos) << alone.output;
+}
+
+// A reference whose record says ok but whose checkpoints are gone (a folder committed without its
+// *.ckpt files) is not a reference: it is trained here, and `rapid status` says why in FROM.
+TEST_F(ReuseDatasets, AReferenceWithoutItsCheckpointsIsTrainedHereNotTaken) {
+  const fs::path built = dir.path() / "built";
+  ASSERT_EQ(run_rapid("sweep " + grid_path.string() + " --jobs 2 --no-summary --out " + built.string()).exit_code, 0);
+  const fs::path refs = dir.path() / "refs";
+  copy_references(built, refs);
+  for (const auto& entry : fs::directory_iterator(refs / "datasets/pendulum/reference"))
+    if (entry.path().extension() == ".ckpt") fs::remove(entry.path());
+
+  const Result r = run_rapid("sweep " + grid_path.string() + " --jobs 1 --no-summary --out " + sweep.string() +
+                             " --reuse-datasets " + refs.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("reused the references and datasets of 0 of 1 scenario builds from " + refs.string() +
+                          "; 1 not done there for this grid's reference settings, built here"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(jobs_ran(sweep).front(), "pendulum/reference") << "the reference was trained, not copied";
+  const Result status = run_rapid("status --json " + refs.string());
+  EXPECT_NE(status.output.find("\"detail\": \"the reference checkpoint " + refs.string() +
+                               "/datasets/pendulum/reference/actor_60.ckpt is missing, unreadable or holds an actor "
+                               "without updates\""),
+            std::string::npos)
+      << status.output;
+}
+
+// The reference agents committed in results/references/flow are what the flow grids start from
+// (README's main job): each one is done for their reference settings, checkpoints included, and
+// every file is the one SHA256SUMS lists (a clone without the checkpoints fails here).
+TEST(CommittedReferences, TheFlowGridsStartFromThemWithoutTraining) {
+  const fs::path refs = fs::path(RAPID_SOURCE_DIR) / "results/references/flow";
+  const std::string check = "cd '" + refs.string() + "' && sha256sum --quiet --check SHA256SUMS";
+  EXPECT_EQ(std::system(check.c_str()), 0) << check;
+  for (const char* grid : {"quick-flow.json", "paper-flow.json", "extension-flow.json"}) {
+    const SweepFolder folder = make_sweep_folder(refs, load_grid(std::string(RAPID_SOURCE_DIR) + "/experiments/grids/" + grid));
+    int references = 0;
+    for (const SweepJob& job : folder.graph.jobs) {
+      if (job.kind != JobKind::kReference) continue;
+      ++references;
+      EXPECT_TRUE(job_is_done(folder, job)) << grid << " " << job.id() << ": " << stage_job_problem(folder, job);
+    }
+    EXPECT_EQ(references, 3) << grid;
+  }
 }
 
 // A scenario's references and datasets answer to its own reference settings: another scenario's
