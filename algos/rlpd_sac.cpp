@@ -37,9 +37,13 @@ void RlpdSac::explore(const ConstVecRef& obs, Rng& rng, Vec& action) {
   action = exploring_.action().col(0);
 }
 
-const RowVec& RlpdSac::critic_targets(const Batch& batch) {
-  noise_.resize(act_dim(), batch.size());
+void RlpdSac::draw_update_noise(int batch) {
+  noise_.resize(act_dim(), batch);
   TanhGaussian::draw_noise(update_rng(), noise_);
+}
+
+const RowVec& RlpdSac::critic_targets(const Batch& batch) {
+  draw_update_noise(batch.size());
   next_policy_.sample(actor().forward(batch.next_obs), noise_);
   const RowVec& next_q = target_q(batch.next_obs, next_policy_.action());
   const float gamma = config().gamma, alpha = temperature();
@@ -82,8 +86,7 @@ float RlpdSac::compute_actor_gradient(const Batch& batch, const Mat& noise) {
 }
 
 float RlpdSac::compute_actor_gradient(const Batch& batch) {
-  noise_.resize(act_dim(), batch.size());
-  TanhGaussian::draw_noise(update_rng(), noise_);
+  draw_update_noise(batch.size());
   UpdateStats stats;
   return actor_gradient(batch, stats);
 }
@@ -96,8 +99,7 @@ float RlpdSac::temperature_loss(float entropy, float* grad) const {
 }
 
 void RlpdSac::actor_and_temperature_step(const Batch& batch, UpdateStats& stats) {
-  noise_.resize(act_dim(), batch.size());
-  TanhGaussian::draw_noise(update_rng(), noise_);
+  draw_update_noise(batch.size());
   actor_gradient(batch, stats);
   actor_optimiser().step(actor().params(), actor().grads());
   actor_changed();

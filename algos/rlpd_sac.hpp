@@ -43,6 +43,8 @@ class RlpdSac : public ActorCritic {
 
  private:
   float actor_gradient(const Batch& batch, UpdateStats& stats);
+  // noise_ for a batch of `batch`, drawn from the update stream (every sample an update makes).
+  void draw_update_noise(int batch);
   void actor_and_temperature_step(const Batch& batch, UpdateStats& stats);
 
   Mlp sampling_actor_;  // a batch-1 copy of the Gaussian actor, for exploration

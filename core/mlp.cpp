@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/atomic_file.hpp"
+#include "core/gemm_log.hpp"
 #include "core/hash.hpp"
 
 namespace rapid {
@@ -166,6 +167,7 @@ void Mlp::forward_layer(Layer& l) {
       Eigen::Map<const Vec> b(params_.data() + l.b_off, l.out);
       y.resize(l.out, batch);
       y.noalias() = W * x;
+      GemmLog::note(GemmShape::kForward, l.out, l.in, batch);
       y.colwise() += b;
       break;
     }
@@ -215,11 +217,13 @@ int Mlp::backward_layer(Layer& l, int buf, Eigen::Index batch, bool param_grads,
         Eigen::Map<Mat> dW(grads_.data() + l.w_off, l.out, l.in);
         Eigen::Map<Vec> db(grads_.data() + l.b_off, l.out);
         dW.noalias() += g * input_of(l).transpose();
+        GemmLog::note(GemmShape::kWeightGrad, l.out, l.in, batch);
         db += g.rowwise().sum();
       }
       if (!input_grad) return buf;
       GradMap dx = grad_map(1 - buf, l.in, batch);
       dx.noalias() = W.transpose() * g;
+      GemmLog::note(GemmShape::kInputGrad, l.out, l.in, batch);
       return 1 - buf;
     }
     case LayerKind::kLayerNorm: {

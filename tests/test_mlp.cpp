@@ -5,7 +5,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <tuple>
+#include <vector>
 
+#include "core/gemm_log.hpp"
 #include "core/hash.hpp"
 #include "core/mlp.hpp"
 #include "tests/finite_difference.hpp"
@@ -162,6 +165,41 @@ TEST(Mlp, InitIsSeededAndScaled) {
 TEST(Mlp, RejectsWrongInputSize) {
   Mlp net = Mlp::make(3, {4}, 1, false, false);
   EXPECT_THROW(net.forward(Mat::Zero(4, 2)), std::invalid_argument);
+}
+
+// What `rapid bench` compares an update with: every product the network ran, in order, and only
+// while a log is alive.
+TEST(GemmLog, RecordsEachProductAsItRuns) {
+  Rng rng(5);
+  Mlp net = Mlp::make(3, {8, 6}, 2, /*layer_norm=*/true, /*tanh_output=*/true);
+  net.init(rng);
+  const Mat x = random_mat(rng, 3, 4);
+  const Mat dy = random_mat(rng, 2, 4);
+  net.forward(x);  // before any log: not recorded
+  using K = GemmShape;
+  std::vector<GemmShape> shapes;
+  {
+    GemmLog log;
+    EXPECT_THROW(GemmLog second, std::logic_error);
+    net.forward(x);
+    net.backward(dy, Grads::kParamsOnly);  // no input gradient into the first layer
+    net.backward(dy, Grads::kInputOnly);   // no weight gradients
+    shapes = log.shapes();
+  }
+  net.forward(x);  // after it: not recorded
+  const std::vector<std::tuple<int, int, int>> expected = {
+      {K::kForward, 8, 3},    {K::kForward, 6, 8},    {K::kForward, 2, 6},     // forward
+      {K::kWeightGrad, 2, 6}, {K::kInputGrad, 2, 6},  {K::kWeightGrad, 6, 8},  // params only
+      {K::kInputGrad, 6, 8},  {K::kWeightGrad, 8, 3},                          //
+      {K::kInputGrad, 2, 6},  {K::kInputGrad, 6, 8},  {K::kInputGrad, 8, 3}};  // input only
+  ASSERT_EQ(shapes.size(), expected.size());
+  for (std::size_t i = 0; i < shapes.size(); ++i) {
+    EXPECT_EQ(shapes[i].kind, std::get<0>(expected[i])) << i;
+    EXPECT_EQ(shapes[i].out, std::get<1>(expected[i])) << i;
+    EXPECT_EQ(shapes[i].in, std::get<2>(expected[i])) << i;
+    EXPECT_EQ(shapes[i].batch, 4) << i;
+  }
+  EXPECT_DOUBLE_EQ(total_flops(shapes), 2.0 * 4 * (3 * (8 * 3 + 6 * 8 + 2 * 6) + 6 * 8 + 2 * 6));
 }
 
 TEST(Mlp, SoftUpdate) {

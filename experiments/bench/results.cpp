@@ -93,7 +93,14 @@ nlohmann::json to_json(const BenchReport& r) {
   for (const UpdateBenchResult& a : r.algorithms)
     j["algorithms"][a.algo] = {{"updates_per_s", a.updates_per_s}, {"update_gflops", a.update_gflops},
                                {"gemm_gflops", a.gemm_gflops},     {"gemm_ratio", a.gemm_ratio},
-                               {"flops_per_update", a.flops_per_update}, {"shape", a.shape}};
+                               {"flops_per_update", a.flops_per_update}, {"shape", a.shape},
+                               {"critics", a.critics}, {"cycle", a.cycle}, {"threads", a.threads},
+                               {"threaded_updates_per_s", a.threaded_updates_per_s}};
+  j["run_costs"] = nlohmann::json::array();
+  for (const RunCost& c : r.run_costs)
+    j["run_costs"].push_back({{"scenario", c.scenario}, {"algo", c.algo}, {"decisions", c.decisions},
+                              {"learning_steps", c.learning_steps}, {"eval_decisions_max", c.eval_decisions_max},
+                              {"train_s", c.train_s}, {"eval_s_max", c.eval_s_max}});
   if (r.sweep && r.sweep->ran)
     j["sweep"] = {{"workers", r.sweep->workers},       {"jobs", r.sweep->jobs},
                   {"one_worker_s", r.sweep->one_worker_s}, {"n_workers_s", r.sweep->n_workers_s},
@@ -120,11 +127,27 @@ void print_report(std::ostream& out, const BenchReport& r) {
   }
   out << "\ngradient updates at the " << r.profile << " profile's " << r.update_scenario << " defaults ("
       << (r.algorithms.empty() ? "" : r.algorithms.front().shape) << ") vs Eigen GEMM on the same shapes\n";
-  out << fmt("  %-10s %11s %13s %12s %8s  %s\n", "algorithm", "updates/s", "update GFLOP/s", "GEMM GFLOP/s", "ratio",
-             "(target >= 0.5)");
-  for (const UpdateBenchResult& a : r.algorithms)
-    out << fmt("  %-10s %11.0f %13.2f %12.2f %8.3f  %s\n", a.algo.c_str(), a.updates_per_s, a.update_gflops,
-               a.gemm_gflops, a.gemm_ratio, verdict(a.gemm_ratio >= kGemmRatioMin));
+  out << "(one thread; an update is one learning step, its GEMMs recorded as it ran; an ensemble's row is its ratio)\n";
+  out << fmt("  %-15s %7s %5s %11s %13s %12s %8s  %-16s %s\n", "algorithm", "critics", "cycle", "updates/s",
+             "update GFLOP/s", "GEMM GFLOP/s", "ratio", "(target >= 0.5)", "all cores");
+  for (const UpdateBenchResult& a : r.algorithms) {
+    const std::string threaded =
+        a.threads > 0 ? fmt("%.0f/s on %d (x%.2f)", a.threaded_updates_per_s, a.threads,
+                            a.threaded_updates_per_s / a.updates_per_s)
+                      : std::string("-");
+    out << fmt("  %-15s %7d %5d %11.0f %13.2f %12.2f %8.3f  %-16s %s\n", a.algo.c_str(), a.critics, a.cycle,
+               a.updates_per_s, a.update_gflops, a.gemm_gflops, a.gemm_ratio,
+               verdict(a.gemm_ratio >= kGemmRatioMin), threaded.c_str());
+  }
+  if (!r.run_costs.empty()) {
+    out << "\none run at the " << r.profile << " profile's budget, predicted from the parts above (decisions at the\n"
+        << "environment's cost, T x utd_ratio updates at the update's, one thread; evaluations at most)\n";
+    out << fmt("  %-10s %-15s %9s %14s %11s %13s\n", "scenario", "algo", "T", "updates", "train min",
+               "+ eval min <=");
+    for (const RunCost& c : r.run_costs)
+      out << fmt("  %-10s %-15s %9ld %14ld %11.1f %13.1f\n", c.scenario.c_str(), c.algo.c_str(), c.decisions,
+                 c.learning_steps, c.train_s / 60.0, c.eval_s_max / 60.0);
+  }
   out << "\nend-to-end training (trainer.cpp) vs the same trajectory replayed alone + its updates timed alone\n";
   out << fmt("  %-10s %-9s %9s %10s %8s %10s %14s %14s  %s\n", "scenario", "algo", "steps/s", "predicted", "ratio",
              "env share", "decision us", "update us", "(target >= 0.85)");

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "experiments/bench/env_speed.hpp"
+#include "experiments/bench/run_cost.hpp"
 #include "experiments/bench/sweep_speed.hpp"
 #include "experiments/bench/train_speed.hpp"
 #include "experiments/bench/update_speed.hpp"
@@ -33,6 +34,7 @@ struct BenchReport {
   std::vector<ScenarioBench> scenarios;
   std::string update_scenario;  // whose default sizes the per-algorithm rows use
   std::vector<UpdateBenchResult> algorithms;
+  std::vector<RunCost> run_costs;  // per scenario and algorithm, from the two above
   std::optional<SweepBenchResult> sweep;
   double wall_s = 0;
 };

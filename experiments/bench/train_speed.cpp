@@ -142,7 +142,8 @@ TrainBenchResult bench_train(const std::string& scenario, const RunConfig& defau
     alone_reset.push_back(alone.reset_s / static_cast<double>(alone.resets));
     alone_update.push_back(u.update_s);
     in_run_decision.push_back(recorder.in_run().step_s / static_cast<double>(recorder.in_run().steps));
-    in_run_update.push_back(log.updates > 0 ? log.update_seconds / static_cast<double>(log.updates) : 0.0);
+    in_run_update.push_back(log.learning_steps > 0 ? log.update_seconds / static_cast<double>(log.learning_steps)
+                                                   : 0.0);
   }
   res.train_s = median(train_s);
   res.train_steps_per_s = static_cast<double>(res.env_steps) / res.train_s;

@@ -1,9 +1,12 @@
 #include "experiments/bench/update_speed.hpp"
 
-#include <iterator>
+#include <omp.h>
+
+#include <algorithm>
 #include <memory>
 
 #include "algos/registry.hpp"
+#include "core/gemm_log.hpp"
 #include "core/mlp.hpp"
 #include "core/replay_buffer.hpp"
 #include "core/rng.hpp"
@@ -13,31 +16,6 @@
 namespace rapid::bench {
 
 namespace {
-
-// The Linear layers (in, out) of an MLP with these widths.
-std::vector<std::pair<int, int>> linear_layers(int in, const std::vector<int>& hidden, int out) {
-  std::vector<std::pair<int, int>> layers;
-  int prev = in;
-  for (int h : hidden) {
-    layers.emplace_back(prev, h);
-    prev = h;
-  }
-  layers.emplace_back(prev, out);
-  return layers;
-}
-
-void add_forward(std::vector<GemmShape>& g, const std::vector<std::pair<int, int>>& net, int b) {
-  for (auto [in, out] : net) g.push_back({GemmShape::kForward, out, in, b});
-}
-
-// A backward pass computes the network-input gradient only when it is read (Mlp's Grads).
-void add_backward(std::vector<GemmShape>& g, const std::vector<std::pair<int, int>>& net, int b, Grads which) {
-  for (auto it = net.rbegin(); it != net.rend(); ++it) {
-    if (which != Grads::kInputOnly) g.push_back({GemmShape::kWeightGrad, it->second, it->first, b});
-    if (which != Grads::kParamsOnly || std::next(it) != net.rend())
-      g.push_back({GemmShape::kInputGrad, it->second, it->first, b});
-  }
-}
 
 std::string widths(int in, const std::vector<int>& hidden, int out) {
   std::string s = std::to_string(in);
@@ -74,31 +52,21 @@ class PlainGemms {
   std::vector<Mat> w_, x_, y_, dw_, dx_;
 };
 
+// Restores OpenMP's thread count when the bench is done with it.
+class OmpThreads {
+ public:
+  explicit OmpThreads(int n) : before_(omp_get_max_threads()) { omp_set_num_threads(n); }
+  ~OmpThreads() { omp_set_num_threads(before_); }
+  OmpThreads(const OmpThreads&) = delete;
+  OmpThreads& operator=(const OmpThreads&) = delete;
+
+ private:
+  int before_;
+};
+
 }  // namespace
 
-std::vector<GemmShape> update_gemms(int obs_dim, int act_dim, const AgentConfig& c) {
-  const auto actor = linear_layers(obs_dim, c.actor_hidden, act_dim);
-  const auto critic = linear_layers(obs_dim + act_dim, c.critic_hidden, 1);
-  const int b = c.batch_size;
-  std::vector<GemmShape> g;
-  // Actor step: π(s), Q(s, π(s)), dQ/da through the critic, then the actor's gradients.
-  add_forward(g, actor, b);
-  add_forward(g, critic, b);
-  add_backward(g, critic, b, Grads::kInputOnly);
-  add_backward(g, actor, b, Grads::kParamsOnly);
-  // Critic step: the target y from both target networks, then Q(s, a) and its gradients.
-  add_forward(g, actor, b);
-  add_forward(g, critic, b);
-  add_forward(g, critic, b);
-  add_backward(g, critic, b, Grads::kParamsOnly);
-  return g;
-}
-
-double total_flops(const std::vector<GemmShape>& gemms) {
-  double f = 0;
-  for (const GemmShape& s : gemms) f += s.flops();
-  return f;
-}
+int update_cycle(const AgentConfig& c) { return std::max(c.utd_ratio, 1) * std::max(c.policy_delay, 1); }
 
 UpdateBenchResult bench_update(const std::string& algo, int obs_dim, int act_dim, const AgentConfig& config,
                                const UpdateBenchOptions& o) {
@@ -106,8 +74,11 @@ UpdateBenchResult bench_update(const std::string& algo, int obs_dim, int act_dim
   res.algo = algo;
   res.shape = "actor " + widths(obs_dim, config.actor_hidden, act_dim) + ", critic " +
               widths(obs_dim + act_dim, config.critic_hidden, 1) + ", batch " + std::to_string(config.batch_size);
-  const std::vector<GemmShape> gemms = update_gemms(obs_dim, act_dim, config);
-  res.flops_per_update = total_flops(gemms);
+  res.critics = std::max(config.critic_ensemble, 1);
+  res.cycle = update_cycle(config);
+  // Per core: the plain GEMMs run on one thread, so the updates do too (an ensemble's members
+  // would otherwise share the cores and the ratio would measure the cores, not the overhead).
+  OmpThreads one_thread(1);
 
   const Algorithm& algorithm = find_algorithm(algo);
   auto agent = algorithm.make(obs_dim, act_dim, config, stream_seed(1, Stream::kNetworkInit));
@@ -123,14 +94,29 @@ UpdateBenchResult bench_update(const std::string& algo, int obs_dim, int act_dim
     b.resize(obs_dim, act_dim, config.batch_size);
     sampler.sample(rng, b);
   }
-  PlainGemms plain(gemms);
   std::size_t next_batch = 0;
-  auto update_block = [&] {
-    const auto t0 = Clock::now();
-    for (int i = 0; i < o.block; ++i) {
+  auto run_updates = [&](int n) {
+    for (int i = 0; i < n; ++i) {
       agent->update(batches[next_batch]);
       next_batch = (next_batch + 1) % batches.size();
     }
+  };
+  // A timed block is `block` whole cycles: every cycle holds the same products (an actor step
+  // once per policy_delay or utd_ratio learning steps, whichever the algorithm uses).
+  const int updates_per_block = o.block * res.cycle;
+  run_updates(updates_per_block);  // sizes every buffer and warms the caches
+  std::vector<GemmShape> gemms;
+  {
+    GemmLog log;
+    run_updates(res.cycle);
+    gemms = log.shapes();
+  }
+  res.flops_per_update = total_flops(gemms) / res.cycle;
+  PlainGemms plain(gemms);
+
+  auto update_block = [&] {
+    const auto t0 = Clock::now();
+    run_updates(updates_per_block);
     return seconds_since(t0);
   };
   auto gemm_block = [&] {
@@ -138,7 +124,6 @@ UpdateBenchResult bench_update(const std::string& algo, int obs_dim, int act_dim
     for (int i = 0; i < o.block; ++i) plain.run();
     return seconds_since(t0);
   };
-  update_block();  // sizes every buffer and warms the caches
   gemm_block();
 
   std::vector<double> update_rates, gemm_rates, ratios;
@@ -149,9 +134,18 @@ UpdateBenchResult bench_update(const std::string& algo, int obs_dim, int act_dim
     const double tu = update_block();
     if (!gemm_first) tg = gemm_block();
     measured += tu + tg;
-    update_rates.push_back(o.block / tu);
-    gemm_rates.push_back(o.block * res.flops_per_update / tg * 1e-9);
+    update_rates.push_back(updates_per_block / tu);
+    gemm_rates.push_back(updates_per_block * res.flops_per_update / tg * 1e-9);
     ratios.push_back(tg / tu);
+  }
+  // Where a job has cores of its own (a Slurm task with several CPUs), an ensemble's members
+  // share them (core/critic_ensemble.cpp): the same updates, timed on every core.
+  if (res.critics > 1 && omp_get_num_procs() > 1) {
+    OmpThreads all_cores(omp_get_num_procs());
+    std::vector<double> rates;
+    for (int round = 0; round < o.min_rounds; ++round) rates.push_back(updates_per_block / update_block());
+    res.threads = omp_get_num_procs();
+    res.threaded_updates_per_s = median(rates);
   }
   volatile float sink = plain.checksum();
   (void)sink;

@@ -1,44 +1,43 @@
 // `rapid bench`, part 2: gradient updates of every algorithm at a scenario's default network
-// sizes, against Eigen's plain GEMM rate on exactly the matrix products one update performs.
+// sizes, against Eigen's plain GEMM rate on exactly the matrix products the updates performed
+// (recorded by core/gemm_log.hpp while they ran). An "update" is one learning step: one call of
+// the agent's update(), utd_ratio of them per decision. Elementwise work (bias, LayerNorm, ReLU,
+// tanh, Adam, Polyak, sampling the Gaussian) is not GEMM work and not counted.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "algos/agent_config.hpp"
+#include "core/gemm_log.hpp"
 
 namespace rapid::bench {
 
-// One matrix product C (m×n) = op(A) op(B) with inner dimension k: 2·m·n·k FLOPs.
-struct GemmShape {
-  enum Kind { kForward, kWeightGrad, kInputGrad } kind;  // W·X, dY·Xᵀ (accumulated), Wᵀ·dY
-  int out, in, batch;                                     // of the Linear layer it belongs to
-  double flops() const { return 2.0 * out * in * batch; }
-};
-
-// The GEMMs of one ActorCritic::update at batch B, in its order: actor forward, critic forward,
-// critic backward to the action (input gradients only), actor backward (weight gradients, and
-// input gradients of all but the first layer), target actor and target critic forwards, critic
-// forward, critic backward (as the actor's).
-// Elementwise work (bias, LayerNorm, ReLU, tanh, Adam, Polyak) is not GEMM work and not counted.
-std::vector<GemmShape> update_gemms(int obs_dim, int act_dim, const AgentConfig& config);
-double total_flops(const std::vector<GemmShape>& gemms);
+// The learning steps one timed unit holds: utd_ratio × policy_delay, so that every unit has the
+// same products (each algorithm steps its actor once per policy_delay or utd_ratio of them).
+int update_cycle(const AgentConfig& config);
 
 struct UpdateBenchOptions {
   double budget_s = 2.0;  // per algorithm, updates and GEMMs together
-  int block = 20;         // updates (or GEMM sets) per timed block
+  int block = 20;         // cycles of updates (or their GEMMs) per timed block
   int min_rounds = 3;
 };
 
 struct UpdateBenchResult {
   std::string algo;
   std::string shape;            // e.g. "actor 18-128-128-2, critic 20-128-128-1, batch 128"
-  double flops_per_update = 0;  // GEMM FLOPs of one update
+  int critics = 1;              // ensemble members
+  int cycle = 1;                // learning steps per timed unit (update_cycle)
+  double flops_per_update = 0;  // GEMM FLOPs of one update, averaged over a cycle
   double updates_per_s = 0;     // median over blocks
   double update_gflops = 0;     // flops_per_update × updates_per_s
   double gemm_gflops = 0;       // the same GEMMs alone, median over blocks interleaved with the updates
   double gemm_ratio = 0;        // median over rounds of update rate / GEMM rate
   double update_s = 0;          // median seconds per update
+  // An ensemble's updates with its members spread over every core (0 when not measured: one
+  // member, or one core).
+  int threads = 0;
+  double threaded_updates_per_s = 0;
 };
 
 // Updates `algo` on batches drawn from synthetic replay buffers (random transitions, rewards

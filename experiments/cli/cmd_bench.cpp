@@ -100,6 +100,15 @@ int run_bench(const BenchOptions& o) {
     }
   }
 
+  // The update cost is measured at the first scenario's sizes; the others differ by a few inputs.
+  for (const bench::ScenarioBench& sb : report.scenarios) {
+    const std::string& s = sb.env.scenario;
+    const int horizon = make_run_env(s, configs.at(s))->horizon();
+    for (const bench::UpdateBenchResult& a : report.algorithms)
+      report.run_costs.push_back(
+          bench::predict_run_cost(s, a.algo, config_of(a.algo, s), horizon, sb.env.decision_s, a.update_s));
+  }
+
   for (bench::ScenarioBench& sb : report.scenarios) {
     const std::string& s = sb.env.scenario;
     std::cerr << "bench: " << s << ": end-to-end training (" << o.train_algo << ")\n";

@@ -27,14 +27,22 @@ fs::path temp_file(const std::string& name) {
   return fs::temp_directory_path() / ("rapid-bench-test-" + std::to_string(::getpid()) + "-" + name);
 }
 
+// `rapid bench ARGS --json FILE`'s JSON, the file removed; null if the command failed.
+nlohmann::json bench_json(const std::string& args, const std::string& name) {
+  const fs::path out = temp_file(name);
+  const int code = run(args + " --json '" + out.string() + "'");
+  if (code != 0) return nullptr;
+  std::ifstream in(out);
+  nlohmann::json j = nlohmann::json::parse(in);
+  fs::remove(out);
+  return j;
+}
+
 }  // namespace
 
 TEST(RapidBench, QuickRunWritesEveryKey) {
-  const fs::path out = temp_file("quick.json");
-  ASSERT_EQ(run("bench --quick --json '" + out.string() + "'"), 0);
-  std::ifstream in(out);
-  const nlohmann::json j = nlohmann::json::parse(in);
-  fs::remove(out);
+  const nlohmann::json j = bench_json("bench --quick", "quick.json");
+  ASSERT_FALSE(j.is_null()) << "rapid bench failed";
 
   for (const char* s : {"lane-drop", "cut-in", "merge"}) {
     ASSERT_TRUE(j["scenarios"].contains(s)) << s;
@@ -55,11 +63,8 @@ TEST(RapidBench, QuickRunWritesEveryKey) {
 }
 
 TEST(RapidBench, OneScenarioAndPendulumWork) {
-  const fs::path out = temp_file("pendulum.json");
-  ASSERT_EQ(run("bench --quick --scenario pendulum --json '" + out.string() + "'"), 0);
-  std::ifstream in(out);
-  const nlohmann::json j = nlohmann::json::parse(in);
-  fs::remove(out);
+  const nlohmann::json j = bench_json("bench --quick --scenario pendulum", "pendulum.json");
+  ASSERT_FALSE(j.is_null()) << "rapid bench failed";
   ASSERT_EQ(j["scenarios"].size(), 1u);
   // No SUMO under the pendulum: its raw-SUMO fields are null, not made up.
   EXPECT_TRUE(j["scenarios"]["pendulum"]["sumo_steps_per_s"].is_null());
@@ -68,15 +73,48 @@ TEST(RapidBench, OneScenarioAndPendulumWork) {
 
 // The flow profile's scenarios (0.1 s decisions, one SUMO step each) and network sizes.
 TEST(RapidBench, TheFlowProfileIsMeasuredAtItsOwnSettings) {
-  const fs::path out = temp_file("flow.json");
-  ASSERT_EQ(run("bench --quick --no-sweep --profile flow --scenario merge --json '" + out.string() + "'"), 0);
-  std::ifstream in(out);
-  const nlohmann::json j = nlohmann::json::parse(in);
-  fs::remove(out);
+  const nlohmann::json j = bench_json("bench --quick --no-sweep --profile flow --scenario merge", "flow.json");
+  ASSERT_FALSE(j.is_null()) << "rapid bench failed";
   EXPECT_EQ(j["profile"], "flow");
   EXPECT_EQ(j["scenarios"]["merge"]["action_repeat"], 1);  // the short profile's is 5
   // The short profile's merge networks are 128 wide with batches of 128.
   EXPECT_EQ(j["algorithms"]["ddpg"]["shape"], "actor 18-64-64-2, critic 20-64-64-1, batch 64");
+}
+
+// The update's GEMMs are recorded as they run, so each algorithm's count is what its update rule
+// says. In units of 2·B multiply-adds (B = 64), with layers actor 18-64-64-2 (rlpd-sac: 18-64-64-4,
+// means and log stds) and critic 20-64-64-1: an actor forward is 5376 (rlpd-sac 5504), a critic
+// forward 5440, a critic's weight gradients 5440 and its input gradients past the first layer
+// 4160 (all three layers: 5440), an actor's weight gradients plus its inner input gradients 9600
+// (rlpd-sac 9856).
+TEST(RapidBench, EachAlgorithmsUpdateIsCountedAsItsRuleSays) {
+  const nlohmann::json j = bench_json("bench --quick --no-sweep --profile flow --scenario merge", "gemms.json");
+  ASSERT_FALSE(j.is_null()) << "rapid bench failed";
+  const double unit = 2.0 * 64;
+  // DDPG: actor forward, critic forward and its input gradients, the actor's gradients; then the
+  // target actor and critic, the critic and its weight gradients.
+  const auto flops = [&](const char* algo) { return j["algorithms"][algo]["flops_per_update"].get<double>(); };
+  EXPECT_DOUBLE_EQ(flops("ddpg"), unit * (5376 + 5440 + 5440 + 9600 + 5376 + 5440 + 5440 + 9600));
+  // TD3+BC: every step the target actor, both target critics, both critics and their gradients;
+  // every second step the actor against the first critic.
+  EXPECT_EQ(j["algorithms"]["td3-bc"]["cycle"], 2);
+  EXPECT_DOUBLE_EQ(flops("td3-bc"), unit * (5376 + 2 * 5440 + 2 * 5440 + 2 * 9600 + (5376 + 5440 + 5440 + 9600) / 2.0));
+  // RLPD: 10 critics, a target over 2 of them, 20 critic steps per actor step against all 10.
+  EXPECT_EQ(j["algorithms"]["rlpd-sac"]["critics"], 10);
+  EXPECT_EQ(j["algorithms"]["rlpd-sac"]["cycle"], 20);
+  EXPECT_DOUBLE_EQ(flops("rlpd-sac"),
+                   unit * (5504 + 2 * 5440 + 10 * 5440 + 10 * 9600 + (5504 + 10 * 5440 + 10 * 5440 + 9856) / 20.0));
+  // One run's cost: rlpd-sac learns 20 times per decision, the paper's five once.
+  bool saw_rlpd_sac = false;
+  for (const nlohmann::json& c : j["run_costs"]) {
+    ASSERT_EQ(c["scenario"], "merge");
+    EXPECT_GT(c["train_s"].get<double>(), 0.0) << c["algo"];
+    EXPECT_GT(c["eval_decisions_max"].get<long>(), 0) << c["algo"];
+    const long per_decision = c["algo"] == "rlpd-sac" ? 20 : 1;
+    EXPECT_EQ(c["learning_steps"].get<long>(), per_decision * c["decisions"].get<long>()) << c["algo"];
+    saw_rlpd_sac = saw_rlpd_sac || c["algo"] == "rlpd-sac";
+  }
+  EXPECT_TRUE(saw_rlpd_sac);
 }
 
 TEST(RapidBench, BadInputExitsTwo) {
