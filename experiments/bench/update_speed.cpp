@@ -3,7 +3,9 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <map>
 #include <memory>
+#include <tuple>
 
 #include "algos/registry.hpp"
 #include "core/gemm_log.hpp"
@@ -23,21 +25,34 @@ std::string widths(int in, const std::vector<int>& hidden, int out) {
   return s + "-" + std::to_string(out);
 }
 
-// The GEMMs of `shapes`, on matrices of their sizes, with nothing else around them.
+// The GEMMs of a cycle of learning steps, on matrices of their sizes, with nothing else around
+// them. The n-th product of a shape within a step gets the same matrices in every step, as the
+// update's own products reuse the same networks' weights step after step (rlpd-sac's 20 critic
+// steps read the same 10 critics): matrices of their own for each of a cycle's hundreds of
+// products would measure cache misses the update does not have.
 class PlainGemms {
  public:
-  explicit PlainGemms(const std::vector<GemmShape>& shapes) : shapes_(shapes) {
-    for (const GemmShape& s : shapes_) {
-      w_.push_back(Mat::Random(s.out, s.in));
-      x_.push_back(Mat::Random(s.in, s.batch));
-      y_.push_back(Mat::Zero(s.out, s.batch));
-      dw_.push_back(Mat::Zero(s.out, s.in));
-      dx_.push_back(Mat::Zero(s.in, s.batch));
+  explicit PlainGemms(const std::vector<std::vector<GemmShape>>& steps) {
+    std::map<std::tuple<int, int, int, int, int>, std::size_t> slot_of;
+    for (const std::vector<GemmShape>& step : steps) {
+      std::map<std::tuple<int, int, int, int>, int> seen;  // products of each shape so far in this step
+      for (const GemmShape& g : step) {
+        const int nth = seen[{g.kind, g.out, g.in, g.batch}]++;
+        const auto [it, added] = slot_of.try_emplace({g.kind, g.out, g.in, g.batch, nth}, w_.size());
+        if (added) {
+          w_.push_back(Mat::Random(g.out, g.in));
+          x_.push_back(Mat::Random(g.in, g.batch));
+          y_.push_back(Mat::Zero(g.out, g.batch));
+          dw_.push_back(Mat::Zero(g.out, g.in));
+          dx_.push_back(Mat::Zero(g.in, g.batch));
+        }
+        program_.push_back({g.kind, it->second});
+      }
     }
   }
   void run() {
-    for (std::size_t i = 0; i < shapes_.size(); ++i) {
-      switch (shapes_[i].kind) {
+    for (const auto& [kind, i] : program_) {
+      switch (kind) {
         case GemmShape::kForward: y_[i].noalias() = w_[i] * x_[i]; break;
         case GemmShape::kWeightGrad: dw_[i].noalias() += y_[i] * x_[i].transpose(); break;
         case GemmShape::kInputGrad: dx_[i].noalias() = w_[i].transpose() * y_[i]; break;
@@ -48,7 +63,7 @@ class PlainGemms {
   float checksum() const { return dx_.back()(0, 0) + dw_.back()(0, 0) + y_.back()(0, 0); }
 
  private:
-  std::vector<GemmShape> shapes_;
+  std::vector<std::pair<GemmShape::Kind, std::size_t>> program_;
   std::vector<Mat> w_, x_, y_, dw_, dx_;
 };
 
@@ -105,14 +120,16 @@ UpdateBenchResult bench_update(const std::string& algo, int obs_dim, int act_dim
   // once per policy_delay or utd_ratio learning steps, whichever the algorithm uses).
   const int updates_per_block = o.block * res.cycle;
   run_updates(updates_per_block);  // sizes every buffer and warms the caches
-  std::vector<GemmShape> gemms;
-  {
+  std::vector<std::vector<GemmShape>> steps;  // the products of each learning step of one cycle
+  double flops = 0;
+  for (int i = 0; i < res.cycle; ++i) {
     GemmLog log;
-    run_updates(res.cycle);
-    gemms = log.shapes();
+    run_updates(1);
+    steps.push_back(log.shapes());
+    flops += total_flops(log.shapes());
   }
-  res.flops_per_update = total_flops(gemms) / res.cycle;
-  PlainGemms plain(gemms);
+  res.flops_per_update = flops / res.cycle;
+  PlainGemms plain(steps);
 
   auto update_block = [&] {
     const auto t0 = Clock::now();
