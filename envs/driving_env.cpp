@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "envs/scenario_hooks.hpp"
 #include "envs/sumo_api.hpp"
 
 namespace rapid {
@@ -73,11 +74,12 @@ std::string write_route_file(const std::string& template_path, const ScenarioSet
 }
 }  // namespace
 
-DrivingEnv::DrivingEnv(DrivingConfig config) : config_(std::move(config)) {
-  validate_scenario_settings(config_.scenario, config_.settings);
-  weights_ = driving::reward_weights(config_.settings.reward);
-  // File names are resolved on reset, so a missing network is reported when it matters.
-  session_config_.step_length = config_.step_length;
+DrivingEnv::DrivingEnv(std::shared_ptr<const ScenarioDescriptor> scenario, const ScenarioSettings& settings)
+    : scenario_(std::move(scenario)), settings_(settings) {
+  validate_scenario_settings(*scenario_, settings_);
+  weights_ = driving::reward_weights(settings_.reward);
+  hook_ = make_scenario_hook(scenario_->hook, settings_);
+  session_config_.step_length = scenario_->step_length;
 }
 
 DrivingEnv::~DrivingEnv() {
@@ -85,14 +87,14 @@ DrivingEnv::~DrivingEnv() {
 }
 
 void DrivingEnv::reset(std::uint64_t seed, VecRef obs) {
-  const std::string& s = config_.scenario;
-  const ScenarioSettings& settings = config_.settings;
-  const std::string variant = settings.network == "short" ? "" : settings.network + "/";
-  session_config_.net_file = network_file(s, variant + s + ".net.xml");
-  if (route_file_.empty()) route_file_ = write_route_file(network_file(s, variant + s + ".rou.xml"), settings);
+  const std::string& s = scenario_->name;
+  const ScenarioSettings& settings = settings_;
+  const NetworkFiles& network = scenario_->networks.at(settings.network);
+  session_config_.net_file = network.net;
+  if (route_file_.empty()) route_file_ = write_route_file(network.routes, settings);
   session_config_.route_files = {route_file_};
   session_config_.max_depart_delay = settings.max_depart_delay;
-  session_config_.additional_files = {network_file("", "vtypes.add.xml")};
+  session_config_.additional_files = scenario_->additional_files;
   session_config_.seed = seed;
   session_.start(session_config_);
   // The scenario's own draws (entry lane, obstacles, warm-up length) use a stream apart from
@@ -100,14 +102,15 @@ void DrivingEnv::reset(std::uint64_t seed, VecRef obs) {
   Rng rng(splitmix64(seed ^ 0x5ce7a410'0000'0000ULL));
   try {
     if (!road_read_) {
-      road_ = Road::from_simulation(config_.edges);
+      road_ = Road::from_simulation(scenario_->road);
+      resolve_features();
       road_read_ = true;
     }
-    populate(rng);
-    const int warmup = settings.traffic_warmup + static_cast<int>(rng.index(config_.traffic_warmup_jitter + 1));
+    if (hook_) hook_->populate(*this, rng);
+    const int warmup = settings.traffic_warmup + static_cast<int>(rng.index(scenario_->traffic_warmup_jitter + 1));
     for (int i = 0; i < warmup; ++i) Simulation::step();
     const int lane = ego_depart_lane(rng);
-    Vehicle::add(kEgo, config_.ego_route, "ego", "now", std::to_string(lane), "base", "max");
+    Vehicle::add(kEgo, scenario_->ego.route, scenario_->ego.type, "now", std::to_string(lane), "base", "max");
     // The ego enters as soon as its lane's entry has room.
     for (int i = 0; Vehicle::getRoadID(kEgo).empty(); ++i) {
       if (i == 2000) throw std::runtime_error("the ego found no room to enter within 200 s");
@@ -123,7 +126,7 @@ void DrivingEnv::reset(std::uint64_t seed, VecRef obs) {
     t_ = 0;
     since_lane_change_ = settings.lane_change_interval;
     read_state();
-    after_observe();
+    if (hook_) hook_->after_observe(*this);
     if (trace_ != nullptr) record_reset(seed);
   } catch (...) {
     rethrow_with_context("scenario '" + s + "': reset(" + std::to_string(seed) + ")");
@@ -134,35 +137,36 @@ void DrivingEnv::reset(std::uint64_t seed, VecRef obs) {
 
 StepResult DrivingEnv::step(const ConstVecRef& action, VecRef obs) {
   session_.require_active();
-  if (episode_over_) throw std::logic_error("scenario '" + config_.scenario + "': step() after the episode ended");
+  if (episode_over_) throw std::logic_error("scenario '" + scenario_->name + "': step() after the episode ended");
   StepResult r;
   try {
     const Road::Edge& edge = road_.edge(ego_.edge);
     const int lane_before = ego_.global_lane;
     const double speed_before = ego_.speed;
-    const double decision_time = config_.settings.action_repeat * config_.step_length;
+    const double decision_time = settings_.action_repeat * scenario_->step_length;
     bool commanded = false, failed = false;
     double accel = 0.0;
     if (!builtin_) {
-      accel = std::clamp(static_cast<double>(action[0]), -1.0, 1.0) * config_.max_accel;
-      const int dir = action[1] > 1.0f / 3.0f ? 1 : (action[1] < -1.0f / 3.0f ? -1 : 0);
+      accel = std::clamp(static_cast<double>(action[0]), -1.0, 1.0) * scenario_->max_accel;
+      const float threshold = scenario_->lane_change_threshold;
+      const int dir = action[1] > threshold ? 1 : (action[1] < -threshold ? -1 : 0);
       if (dir != 0) {
         const int target = ego_.lane + dir;
-        if (target < 0 || target >= edge.lanes || since_lane_change_ < config_.settings.lane_change_interval) {
+        if (target < 0 || target >= edge.lanes || since_lane_change_ < settings_.lane_change_interval) {
           failed = true;
         } else {
           // Expires within this decision, so a refused request does not linger into the next.
-          Vehicle::changeLane(kEgo, target, decision_time - 0.5 * config_.step_length);
+          Vehicle::changeLane(kEgo, target, decision_time - 0.5 * scenario_->step_length);
           commanded = true;
         }
       }
     }
     bool collision = false;
-    const double dt = config_.step_length;
-    for (int k = 1; k <= config_.settings.action_repeat && !collision; ++k) {
+    const double dt = scenario_->step_length;
+    for (int k = 1; k <= settings_.action_repeat && !collision; ++k) {
       // The commanded acceleration, exactly: one setSpeed per SUMO step (slowDown's ramp ends a
       // step late). It holds until the next setSpeed, so the ego never falls back to SUMO's driver.
-      if (!builtin_) Vehicle::setSpeed(kEgo, std::clamp(ego_.speed + accel * dt * k, 0.0, config_.speed_norm));
+      if (!builtin_) Vehicle::setSpeed(kEgo, std::clamp(ego_.speed + accel * dt * k, 0.0, scenario_->speed_norm));
       Simulation::step();
       collision = Simulation::getCollidingVehiclesNumber() > 0 && ego_collided();
     }
@@ -171,7 +175,7 @@ StepResult DrivingEnv::step(const ConstVecRef& action, VecRef obs) {
     r.info.lane_changes = std::abs(ego_.global_lane - lane_before);
     if (commanded && r.info.lane_changes == 0) failed = true;
     since_lane_change_ = r.info.lane_changes > 0 ? 0 : since_lane_change_ + 1;
-    after_observe();
+    if (hook_) hook_->after_observe(*this);
     ++t_;
     r.info.collision = collision;
     r.info.ego_speed = ego_.speed;
@@ -181,10 +185,10 @@ StepResult DrivingEnv::step(const ConstVecRef& action, VecRef obs) {
     r.terminated = collision;
     const Road::Edge& now = road_.edge(ego_.edge);
     const bool road_end = now.exit && ego_.pos > now.length - kRoadEndMargin;
-    r.truncated = !r.terminated && (t_ >= config_.settings.horizon || road_end);
+    r.truncated = !r.terminated && (t_ >= settings_.horizon || road_end);
     if (trace_ != nullptr) record_decision(action, speed_before, r, terms);
   } catch (...) {
-    rethrow_with_context("scenario '" + config_.scenario + "': step " + std::to_string(t_));
+    rethrow_with_context("scenario '" + scenario_->name + "': step " + std::to_string(t_));
   }
   episode_over_ = r.terminated || r.truncated;
   observe(obs);
@@ -197,7 +201,7 @@ void DrivingEnv::advance_traffic_only(int sumo_steps) {
   try {
     for (int i = 0; i < sumo_steps; ++i) Simulation::step();
   } catch (...) {
-    rethrow_with_context("scenario '" + config_.scenario + "': advance_traffic_only");
+    rethrow_with_context("scenario '" + scenario_->name + "': advance_traffic_only");
   }
 }
 
@@ -213,7 +217,7 @@ void DrivingEnv::read_state() {
   ego_.global_lane = ego_.lane + edge.lane_shift;
   ego_.progress = edge.offset + ego_.pos;
 
-  const double range = config_.sensing_range;
+  const double range = scenario_->sensing_range;
   auto fill = [&](Neighbor& n, const std::string& id, double dist) {
     const double gap = std::max(0.0, dist + kMinGap);
     n.present = !id.empty() && gap <= range;
@@ -267,7 +271,7 @@ driving::RewardTerms DrivingEnv::reward(bool collision, bool changed_lane, bool 
   const Neighbor& follow = ego_.follower[kCurrent];
   driving::RewardInputs in;
   in.speed = ego_.speed;
-  in.desired_speed = config_.settings.desired_speed;
+  in.desired_speed = settings_.desired_speed;
   in.leader = lead.present;
   in.leader_gap = lead.gap;
   in.leader_speed = lead.speed;
@@ -281,11 +285,11 @@ driving::RewardTerms DrivingEnv::reward(bool collision, bool changed_lane, bool 
 }
 
 void DrivingEnv::observe(VecRef obs) const {
-  const double range = config_.sensing_range, rel = config_.rel_speed_norm;
+  const double range = scenario_->sensing_range, rel = scenario_->rel_speed_norm;
   const double v = ego_.speed;
   const Road::Edge& edge = road_.edge(ego_.edge);
-  obs[0] = clip1(2.0 * v / config_.speed_norm - 1.0);
-  obs[1] = since_lane_change_ >= config_.settings.lane_change_interval ? 1.0f : -1.0f;
+  obs[0] = clip1(2.0 * v / scenario_->speed_norm - 1.0);
+  obs[1] = since_lane_change_ >= settings_.lane_change_interval ? 1.0f : -1.0f;
   for (int side = kLeft; side <= kRight; ++side) {
     float* o = obs.data() + 2 + 5 * side;
     const Neighbor& lead = ego_.leader[side];
@@ -300,10 +304,45 @@ void DrivingEnv::observe(VecRef obs) const {
     } else {
       const double end = edge.lane_end[lane];
       o[4] = end == Road::kNoEnd ? 1.0f
-                                 : clip1(2.0 * std::clamp((end - ego_.progress) / config_.lane_end_range, 0.0, 1.0) - 1.0);
+                                 : clip1(2.0 * std::clamp((end - ego_.progress) / scenario_->lane_end_range, 0.0, 1.0) - 1.0);
     }
   }
   write_features(obs.data() + kCommonObs);
+}
+
+void DrivingEnv::resolve_features() {
+  features_.clear();
+  for (const FeatureSpec& spec : scenario_->features) {
+    const Road::Edge& edge = road_.edge(spec.edge);
+    Feature f{.kind = spec.kind};
+    if (spec.kind == FeatureSpec::Kind::kDistanceToEdge) {
+      f.target = edge.offset;
+      f.range = spec.range;
+    } else {
+      f.target = edge.lane_end[spec.lane];
+      if (f.target == Road::kNoEnd)
+        throw std::invalid_argument("feature distance_to_lane_end: lane " + std::to_string(spec.lane) + " of edge '" +
+                                    spec.edge + "' does not end");
+      f.range = spec.range_from.empty() ? spec.range : f.target - road_.edge(spec.range_from).offset;
+      f.global_lane = spec.lane + edge.lane_shift;
+    }
+    features_.push_back(f);
+  }
+}
+
+int DrivingEnv::ego_depart_lane(Rng& rng) const {
+  const int fixed = scenario_->ego.depart_lane;
+  return fixed >= 0 ? fixed : static_cast<int>(rng.index(road_.edge(scenario_->ego.depart_edge).lanes));
+}
+
+void DrivingEnv::write_features(float* out) const {
+  for (const Feature& f : features_) {
+    const double d = f.target - ego_.progress;
+    if (f.kind == FeatureSpec::Kind::kDistanceToEdge)
+      *out++ = d <= 0.0 ? 1.0f : static_cast<float>(2.0 * std::min(1.0, d / f.range) - 1.0);
+    else
+      *out++ = ego_.global_lane != f.global_lane ? 1.0f : static_cast<float>(2.0 * std::clamp(d / f.range, 0.0, 1.0) - 1.0);
+  }
 }
 
 RAPID_SUMO_BACKEND_END

@@ -1,12 +1,13 @@
-// The common part of the three SUMO driving scenarios (docs/scenarios.md): one agent-controlled ego among
-// SUMO-driven humans. Scenarios derive from DrivingEnv and supply their network, where the ego
-// enters, what else to put on the road, and their own observation features.
+// A SUMO driving scenario (docs/scenarios.md): one agent-controlled ego among SUMO-driven humans, on
+// the road its descriptor (envs/scenario_descriptor.hpp) describes: the network, where the ego
+// enters, the observation's extra features, and a named hook for what else a task puts on the
+// road (envs/scenario_hooks.hpp).
 //
 // Decision: a = (a0, a1) ∈ [-1,1]², held for `action_repeat` SUMO steps of 0.1 s.
 //   a0·max_accel is the commanded acceleration, applied by a setSpeed before each SUMO step of the
 //   decision (speed clipped to [0, speed_norm]); speed mode 0 (no safety checks) lets the ego make
 //   mistakes.
-//   a1 < −1/3 → one lane right, a1 > 1/3 → one lane left, through changeLane with the ego's own
+//   a1 < −θ → one lane right, a1 > θ → one lane left (θ the descriptor's lane_change_threshold, 1/3), through changeLane with the ego's own
 //   lane changing off (lane-change mode 256: only TraCI requests, refused only if they would
 //   overlap a vehicle). A request into a missing lane, before `lane_change_interval` decisions have
 //   passed since the last change, or refused by SUMO is a failed lane change: penalised, no effect.
@@ -15,7 +16,7 @@
 //   then for the left, current and right lane (5 each): leader gap / R (missing +1), leader
 //   relative speed / 15 m/s (missing +1), −follower gap / R (missing −1), follower relative
 //   speed / 15 m/s (missing −1), lane continues ahead (−1 missing, 2·min(1, d_end / R_end) − 1);
-//   then the scenario's features.
+//   then the descriptor's features.
 #pragma once
 
 #include <memory>
@@ -26,6 +27,7 @@
 #include "envs/driving_reward.hpp"
 #include "envs/env.hpp"
 #include "envs/road.hpp"
+#include "envs/scenario_descriptor.hpp"
 #include "envs/scenario_settings.hpp"
 #include "envs/sumo_session.hpp"
 
@@ -36,36 +38,21 @@ struct TraceSnapshot;
 
 RAPID_SUMO_BACKEND_BEGIN
 
-// The scenario's design (geometry, sensing, control limits) plus the settings a config may change.
-struct DrivingConfig {
-  std::string scenario;            // name; also the folder and file stem under network_dir()
-  std::vector<std::string> edges;  // the road's edges (first one anchors the progress coordinate)
-  std::string ego_route;           // route id (in the scenario's .rou.xml) the ego drives
-  double step_length = 0.1;        // s
-  // Up to this many extra SUMO steps of traffic before the ego enters, on top of the profile's
-  // traffic_warmup. (Not the run config's warmup_steps: random-action decisions before learning.)
-  int traffic_warmup_jitter = 50;
-  double sensing_range = 100.0;    // R (m): vehicles farther away read as missing
-  double lane_end_range = 200.0;   // R_end (m) of the "lane continues ahead" entries
-  double speed_norm = 35.0;        // v_norm (m/s): also the ego's top speed under agent control
-  double rel_speed_norm = 15.0;    // m/s
-  double max_accel = 4.0;          // m/s² at |a0| = 1
-  int extra_features = 0;          // scenario features appended to the observation
-  ScenarioSettings settings;       // horizon, control rate, traffic, reward variant, …
-};
+class ScenarioHook;
 
-class DrivingEnv : public Env {
+class DrivingEnv final : public Env {
  public:
   static constexpr int kCommonObs = 17;
   static constexpr const char* kEgo = "ego";
 
-  explicit DrivingEnv(DrivingConfig config);
+  // Throws std::invalid_argument naming a setting out of range for the scenario.
+  DrivingEnv(std::shared_ptr<const ScenarioDescriptor> scenario, const ScenarioSettings& settings);
   ~DrivingEnv() override;
 
-  std::string name() const override { return config_.scenario; }
-  int obs_dim() const override { return kCommonObs + config_.extra_features; }
+  std::string name() const override { return scenario_->name; }
+  int obs_dim() const override { return kCommonObs + static_cast<int>(scenario_->features.size()); }
   int act_dim() const override { return 2; }
-  int horizon() const override { return config_.settings.horizon; }
+  int horizon() const override { return settings_.horizon; }
   void reset(std::uint64_t seed, VecRef obs) override;
   StepResult step(const ConstVecRef& action, VecRef obs) override;
   void set_builtin_driver(bool on) override { builtin_ = on; }
@@ -108,24 +95,24 @@ class DrivingEnv : public Env {
     static const std::string none;
     return ego_.edge < 0 ? none : road_.edge(ego_.edge).id;
   }
-  const DrivingConfig& config() const { return config_; }
+  const ScenarioDescriptor& scenario() const { return *scenario_; }
+  const ScenarioSettings& settings() const { return settings_; }
   const driving::RewardWeights& reward_weights() const { return weights_; }
-
- protected:
-  // Puts scenario vehicles on the road before the warm-up (simulation time 0).
-  virtual void populate(Rng&) {}
-  // Lane index on the first edge of the ego's route where the ego enters.
-  virtual int ego_depart_lane(Rng& rng) = 0;
-  // Called once per decision after the state is read (e.g. scripted manoeuvres of others).
-  virtual void after_observe() {}
-  // Writes config().extra_features values in [-1, 1].
-  virtual void write_features(float*) const {}
-
+  // The scenario's hook (nullptr without one), e.g. for a test to read what it did.
+  const ScenarioHook* hook() const { return hook_.get(); }
   bool builtin_driver() const { return builtin_; }
-  // Distance along the road from the ego to `progress` (negative once passed).
-  double distance_to(double progress) const { return progress - ego_.progress; }
 
  private:
+  // A descriptor feature with its geometry resolved on the road (once, at the first reset).
+  struct Feature {
+    FeatureSpec::Kind kind;
+    double target = 0.0;  // progress of the edge's start, or of the lane's end
+    double range = 1.0;
+    int global_lane = 0;
+  };
+  void resolve_features();
+  int ego_depart_lane(Rng& rng) const;
+  void write_features(float* out) const;
   void read_state();
   void read_neighbors(int side, int mode_leaders, int mode_followers);
   bool ego_collided() const;
@@ -140,7 +127,10 @@ class DrivingEnv : public Env {
                        const driving::RewardTerms& terms);
   void observe(VecRef obs) const;
 
-  DrivingConfig config_;
+  std::shared_ptr<const ScenarioDescriptor> scenario_;
+  ScenarioSettings settings_;
+  std::unique_ptr<ScenarioHook> hook_;
+  std::vector<Feature> features_;
   SessionConfig session_config_;
   SumoSession session_;
   Road road_;
@@ -157,8 +147,8 @@ class DrivingEnv : public Env {
   Trace* trace_ = nullptr;  // recording into it when set
 };
 
-// lane-drop, cut-in or merge in this backend's build (throws std::invalid_argument for any other
-// name or bad settings).
+// A built-in scenario (lane-drop, cut-in, merge) or a descriptor file, in this backend's build
+// (throws std::invalid_argument for any other name, a bad descriptor or bad settings).
 std::unique_ptr<DrivingEnv> make_driving_env(const std::string& name, const ScenarioSettings& settings);
 
 RAPID_SUMO_BACKEND_END

@@ -35,13 +35,13 @@ TraceVehicle read_vehicle(const std::string& id) {
 void DrivingEnv::record(Trace* trace) { trace_ = trace; }
 
 void DrivingEnv::record_road() {
-  trace_->scenario = config_.scenario;
-  trace_->settings = config_.settings;
-  trace_->step_length = config_.step_length;
-  trace_->sensing_range = config_.sensing_range;
+  trace_->scenario = scenario_->name;
+  trace_->settings = settings_;
+  trace_->step_length = scenario_->step_length;
+  trace_->sensing_range = scenario_->sensing_range;
   trace_->reward_weights = weights_;
   if (!trace_->road.empty()) return;
-  for (const std::string& edge_id : config_.edges) {
+  for (const std::string& edge_id : scenario_->road) {
     TraceEdge edge;
     edge.id = edge_id;
     const Road::Edge& e = road_.edge(edge_id);
@@ -69,7 +69,7 @@ void DrivingEnv::record_snapshot(TraceSnapshot& s) const {
   s.time = Simulation::getTime();
   s.ego = read_vehicle(kEgo);
   s.vehicles.clear();
-  const double range = config_.sensing_range;
+  const double range = scenario_->sensing_range;
   for (const std::string& id : Vehicle::getIDList()) {
     if (id == kEgo) continue;
     const libsumo::TraCIPosition p = Vehicle::getPosition(id);
@@ -93,7 +93,7 @@ void DrivingEnv::record_decision(const ConstVecRef& action, double speed_before,
   TraceDecision& d = ep.decisions.emplace_back();
   d.t = static_cast<int>(ep.decisions.size()) - 1;
   if (!builtin_) d.action = std::array<float, 2>{action[0], action[1]};
-  d.accel = (ego_.speed - speed_before) / (config_.settings.action_repeat * config_.step_length);
+  d.accel = (ego_.speed - speed_before) / (settings_.action_repeat * scenario_->step_length);
   d.reward = r.reward;
   d.terms = terms;
   d.lane_changes = r.info.lane_changes;

@@ -5,6 +5,7 @@
 #include "envs/driving_env.hpp"
 #include "envs/env.hpp"
 #include "envs/pendulum.hpp"
+#include "envs/scenario_descriptor.hpp"
 
 namespace rapid {
 
@@ -20,7 +21,7 @@ const std::vector<std::string>& env_names() {
 }
 
 bool is_driving_scenario(const std::string& name) {
-  return name == "lane-drop" || name == "cut-in" || name == "merge";
+  return name == "lane-drop" || name == "cut-in" || name == "merge" || is_scenario_file(name);
 }
 
 std::unique_ptr<Env> make_env(const std::string& name) {
@@ -34,7 +35,8 @@ std::unique_ptr<Env> make_env(const std::string& name, const ScenarioSettings& s
   if (name == "pendulum") throw std::invalid_argument("scenario 'pendulum' takes no driving settings");
   std::string known;
   for (const auto& n : env_names()) known += (known.empty() ? "" : ", ") + n;
-  throw std::invalid_argument("unknown scenario '" + printable(name) + "'; expected one of " + known);
+  throw std::invalid_argument("unknown scenario '" + printable(name) + "'; expected one of " + known +
+                              " or a scenario file (.json)");
 }
 
 }  // namespace rapid

@@ -1,15 +1,12 @@
 #include "envs/scenario_settings.hpp"
 
+#include "envs/scenario_descriptor.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 namespace rapid {
-
-const std::vector<std::string>& network_variants() {
-  static const std::vector<std::string> names = {"short", "long"};
-  return names;
-}
 
 const std::vector<std::string>& reward_variants() {
   static const std::vector<std::string> names = {"short", "flow"};
@@ -17,23 +14,8 @@ const std::vector<std::string>& reward_variants() {
 }
 
 ScenarioSettings default_scenario_settings(const std::string& scenario) {
-  ScenarioSettings s;
-  if (scenario == "lane-drop") {
-    // 3 x 1980 veh/h offered: more than the three lanes' entry passes and far above the
-    // ~3800 veh/h the two lanes after the drop carry, so the traffic ahead of the ego queues.
-    s.inflow = 1980.0;
-  } else if (scenario == "cut-in") {
-    s.inflow = 720.0;  // light background traffic: the obstacles are the task
-    s.obstacles = 6;
-    s.obstacle_speed_min = 10.0;
-    s.obstacle_speed_max = 16.0;
-  } else if (scenario == "merge") {
-    s.inflow = 1620.0;      // a dense two-lane main road (~3200 veh/h)
-    s.ramp_inflow = 180.0;  // a few humans who merge by themselves
-  } else {
-    throw std::invalid_argument("'" + scenario + "' is not a driving scenario");
-  }
-  return s;
+  if (scenario == "pendulum") throw std::invalid_argument("'" + scenario + "' is not a driving scenario");
+  return scenario_descriptor(scenario)->defaults;
 }
 
 namespace {
@@ -51,8 +33,14 @@ std::string list(const std::vector<std::string>& names) {
 }  // namespace
 
 void validate_scenario_settings(const std::string& scenario, const ScenarioSettings& s) {
-  require(one_of(s.network, network_variants()),
-          "network: '" + s.network + "' is not one of " + list(network_variants()));
+  validate_scenario_settings(*scenario_descriptor(scenario), s);
+}
+
+void validate_scenario_settings(const ScenarioDescriptor& d, const ScenarioSettings& s) {
+  const std::string& scenario = d.name;
+  std::vector<std::string> networks;
+  for (const auto& [variant, files] : d.networks) networks.push_back(variant);
+  require(one_of(s.network, networks), "network: '" + s.network + "' is not one of " + list(networks));
   require(one_of(s.reward, reward_variants()), "reward: '" + s.reward + "' is not one of " + list(reward_variants()));
   require(s.action_repeat >= 1 && s.action_repeat <= 50, "action_repeat: must be 1 to 50 SUMO steps");
   require(s.horizon >= 1 && s.horizon <= 100000, "horizon: must be 1 to 100000 decisions");
@@ -64,7 +52,7 @@ void validate_scenario_settings(const std::string& scenario, const ScenarioSetti
           "desired_speed: must be 1 to 35 m/s");
   // One Bernoulli draw per lane per second: at most 3600 veh/h per lane.
   require(std::isfinite(s.inflow) && s.inflow >= 0.0 && s.inflow <= 3600.0, "inflow: must be 0 to 3600 veh/h per lane");
-  const bool merge = scenario == "merge", cut_in = scenario == "cut-in";
+  const bool merge = d.has_ramp_inflow, cut_in = d.hook == kCutInObstaclesHook;
   require(std::isfinite(s.ramp_inflow) && s.ramp_inflow >= 0.0 && s.ramp_inflow <= 3600.0,
           "ramp_inflow: must be 0 to 3600 veh/h");
   require(merge || s.ramp_inflow == 0.0, "ramp_inflow: scenario '" + scenario + "' has no on-ramp");

@@ -10,7 +10,8 @@
 namespace rapid {
 
 struct ScenarioSettings {
-  // Geometry: "short" builds envs/networks/<scenario>/, "long" envs/networks/<scenario>/long/.
+  // Geometry: one of the descriptor's networks (the built-ins: "short", envs/networks/<scenario>/,
+  // and "long", envs/networks/<scenario>/long/).
   std::string network = "short";
   int action_repeat = 5;           // SUMO steps of 0.1 s per decision
   int horizon = 150;               // decisions per episode
@@ -24,21 +25,24 @@ struct ScenarioSettings {
   std::string reward = "short";    // reward variant: "short" or "flow" (envs/driving_reward.hpp)
   // Offered inflow per main-road lane, veh/h (each lane a Bernoulli flow, one draw per second).
   double inflow = 0.0;
-  double ramp_inflow = 0.0;        // merge only: veh/h on the on-ramp
-  int obstacles = 0;               // cut-in only: slow obstacle vehicles
-  double obstacle_speed_min = 0.0, obstacle_speed_max = 0.0;  // cut-in only, m/s
+  double ramp_inflow = 0.0;        // roads with a RAMP_INFLOW flow (merge): veh/h on the on-ramp
+  int obstacles = 0;               // roads with the cut-in-obstacles hook: slow obstacle vehicles
+  double obstacle_speed_min = 0.0, obstacle_speed_max = 0.0;  // with that hook, m/s
 };
 
-// The `short` profile's settings of a driving scenario (throws std::invalid_argument for a name
-// that is not a driving scenario).
+struct ScenarioDescriptor;
+
+// The `short` profile's settings of a driving scenario: its descriptor's defaults (throws
+// std::invalid_argument for a name that is not a driving scenario).
 ScenarioSettings default_scenario_settings(const std::string& scenario);
 
 // Throws std::invalid_argument("<key> …") naming the first setting that is out of range for
-// `scenario` (e.g. obstacles on a road without them, a minimum above a maximum).
+// the scenario (e.g. obstacles on a road without them, a minimum above a maximum, a network the
+// descriptor does not have).
+void validate_scenario_settings(const ScenarioDescriptor& scenario, const ScenarioSettings& s);
 void validate_scenario_settings(const std::string& scenario, const ScenarioSettings& s);
 
-// The networks and reward variants a setting may name.
-const std::vector<std::string>& network_variants();
+// The reward variants a setting may name.
 const std::vector<std::string>& reward_variants();
 
 }  // namespace rapid

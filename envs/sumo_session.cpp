@@ -7,10 +7,6 @@
 
 #include "envs/sumo_api.hpp"
 
-#ifndef RAPID_NETWORK_DIR
-#define RAPID_NETWORK_DIR "networks"
-#endif
-
 namespace rapid {
 RAPID_SUMO_BACKEND_BEGIN
 
@@ -18,19 +14,6 @@ namespace {
 // The session that owns libsumo's single simulation, if any.
 const SumoSession* g_owner = nullptr;
 }  // namespace
-
-std::string network_dir() {
-  if (const char* dir = std::getenv("RAPID_NETWORK_DIR"); dir != nullptr && *dir != '\0') return dir;
-  return RAPID_NETWORK_DIR;
-}
-
-std::string network_file(const std::string& scenario, const std::string& file) {
-  const std::filesystem::path path = std::filesystem::path(network_dir()) / scenario / file;
-  if (!std::filesystem::exists(path))
-    throw std::runtime_error("SUMO network file '" + path.string() +
-                             "' not found: build the 'rapid_networks' target or set RAPID_NETWORK_DIR");
-  return path.string();
-}
 
 void rethrow_with_context(const std::string& context) {
   try {

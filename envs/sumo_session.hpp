@@ -16,12 +16,6 @@
 namespace rapid {
 RAPID_SUMO_BACKEND_BEGIN
 
-// Where the built networks of the scenarios live: $RAPID_NETWORK_DIR if set, else the build's
-// networks/ folder (compiled in).
-std::string network_dir();
-// `<network_dir>/<scenario>/<file>`; throws std::runtime_error naming the path when it is missing.
-std::string network_file(const std::string& scenario, const std::string& file);
-
 struct SessionConfig {
   // The SUMO program: "sumo" (libsumo runs it in this process whatever the name; libtraci starts
   // it), or "sumo-gui" for the libtraci build (envs/gui_env.hpp), with extra options of its own.

@@ -21,13 +21,16 @@ import math
 import os
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
+from scenario_files import scenario_edges, scenario_labels  # noqa: E402
+
 SCHEMA = "rapid.trace/1"
 SCHEMA_PREFIX = "rapid.trace/"
 VEHICLE_FIELDS = ["id", "type", "lane", "x", "y", "angle", "speed", "length", "width"]
-# The edges of each scenario's road (envs/lane_drop.cpp, cut_in.cpp, merge.cpp): a trace whose
-# road is not its scenario's was recorded elsewhere or edited.
-SCENARIO_EDGES = {"lane-drop": {"in", "out"}, "cut-in": {"road"}, "merge": {"up", "ramp", "acc", "down"}}
-SCENARIO_LABEL = {"lane-drop": "Lane-drop", "cut-in": "Cut-in", "merge": "Merge"}
+# The edges of each built-in scenario's road, from its descriptor: a trace whose road is not its
+# scenario's was recorded elsewhere or edited. (A scenario file of a user's is not checked.)
+SCENARIO_EDGES = scenario_edges()
+SCENARIO_LABEL = scenario_labels()
 
 
 class BadTrace(Exception):

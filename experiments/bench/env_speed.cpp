@@ -46,7 +46,7 @@ std::vector<double> time_raw_sumo(DrivingEnv& env, std::uint64_t seed, long deci
   Vec obs(env.obs_dim());
   env.set_builtin_driver(true);
   env.reset(seed, obs);
-  const int repeat = env.config().settings.action_repeat;
+  const int repeat = env.settings().action_repeat;
   std::vector<double> cumulative;
   cumulative.reserve(static_cast<std::size_t>(decisions));
   const auto t0 = Clock::now();
@@ -66,7 +66,7 @@ EnvBenchResult bench_env(const std::string& scenario, const RunConfig& config, c
   EnvBenchResult res;
   res.scenario = scenario;
   res.has_sumo = driving != nullptr;
-  res.action_repeat = driving != nullptr ? driving->config().settings.action_repeat : 1;
+  res.action_repeat = driving != nullptr ? driving->settings().action_repeat : 1;
 
   Rng action_rng(stream_seed(o.seed, Stream::kExploration));
   std::vector<double> decision_rates, sumo_rates, ratios, decision_times, reset_times;

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "envs/env.hpp"
+
 namespace rapid {
 
 // A seed is a non-negative integer that fits 64 bits (CLI11's own range check prints ±1.8e308).
@@ -40,6 +42,13 @@ inline std::string names_or(const std::vector<std::string>& names) {
   for (std::size_t i = 0; i < names.size(); ++i)
     out += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
   return out;
+}
+
+// The help of a --scenario option: the built-in names, or a scenario file (docs/scenarios.md).
+inline std::string scenario_option_help() {
+  std::string names;
+  for (const std::string& n : env_names()) names += (names.empty() ? "" : ", ") + n;
+  return names + " or a scenario file (.json)";
 }
 
 }  // namespace rapid

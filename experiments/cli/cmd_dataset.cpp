@@ -173,7 +173,7 @@ Command add_build(CLI::App& dataset) {
   auto o = std::make_shared<BuildOptions>();
   CLI::App* sub = dataset.add_subcommand(
       "build", "Train (or reuse) the reference DDPG agent and write initial, medium, final and final+medium");
-  sub->add_option("--scenario", o->scenario, names_or(env_names()))->required();
+  sub->add_option("--scenario", o->scenario, scenario_option_help())->required();
   sub->add_option("--grid", o->grid, "grid whose profile, config overrides and \"reference\" settings apply");
   sub->add_option("--profile", o->profile, "config profile: short (default) or flow (docs/scenarios.md)");
   sub->add_option("--dir", o->dir, "output folder; datasets go to DIR/<scenario>/<name>.h5");

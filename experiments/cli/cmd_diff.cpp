@@ -10,7 +10,7 @@
 #include "experiments/cli/output_folder.hpp"
 #include "experiments/report/baseline.hpp"
 #include "experiments/report/summarize.hpp"
-#include "experiments/run/json_input.hpp"
+#include "core/json_input.hpp"
 
 namespace rapid {
 

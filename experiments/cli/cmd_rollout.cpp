@@ -103,7 +103,7 @@ int run_rollout(const RolloutOptions& o) {
 Command add_rollout_command(CLI::App& parent) {
   auto opts = std::make_shared<RolloutOptions>();
   CLI::App* sub = parent.add_subcommand("rollout", "Run a fixed policy and print each episode's return");
-  sub->add_option("--scenario", opts->scenario, names_or(env_names()))->required();
+  sub->add_option("--scenario", opts->scenario, scenario_option_help())->required();
   sub->add_option("--policy", opts->policy, "random, zero, sumo (SUMO's own driver) or an actor checkpoint")
       ->required();
   sub->add_option("--episodes", opts->episodes, "number of episodes")->check(count_validator());

@@ -98,7 +98,7 @@ int run_command(const RunOptions& o) {
 Command add_run_command(CLI::App& parent) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* sub = parent.add_subcommand("run", "Train one job and write its run record");
-  sub->add_option("--scenario", o->scenario, names_or(env_names()))->required();
+  sub->add_option("--scenario", o->scenario, scenario_option_help())->required();
   sub->add_option("--algo", o->algo, names_or(algo_names()))->required();
   std::vector<std::string> datasets = dataset_names();
   datasets.push_back("a D4RL-layout HDF5 path");

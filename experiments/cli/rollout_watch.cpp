@@ -40,7 +40,13 @@ ScenarioSettings rollout_settings(const std::string& scenario, const WatchOption
       throw UsageError(std::string("--profile: ") + e.what());
     }
   }
-  if (w.settings_from.empty()) return default_scenario_settings(scenario);
+  if (w.settings_from.empty()) {
+    try {
+      return default_scenario_settings(scenario);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--scenario: ") + e.what());
+    }
+  }
   const nlohmann::json record = read_run_record(w.settings_from);
   const nlohmann::json* cell = record.contains("cell") && record["cell"].is_object() ? &record["cell"] : nullptr;
   const std::string ran = cell ? cell->value("scenario", "") : "";

@@ -10,7 +10,7 @@
 
 #include "experiments/report/curves.hpp"
 #include "experiments/report/format.hpp"
-#include "experiments/run/json_input.hpp"
+#include "core/json_input.hpp"
 #include "experiments/run/run_config.hpp"
 
 namespace rapid {

@@ -6,6 +6,8 @@
 #include <map>
 
 #include "algos/registry.hpp"
+#include "envs/env.hpp"
+#include "envs/scenario_descriptor.hpp"
 
 namespace rapid {
 
@@ -69,9 +71,13 @@ std::string dataset_display_name(const std::string& dataset) {
 }
 
 std::string scenario_display_name(const std::string& scenario) {
-  static const std::map<std::string, std::string> names = {
-      {"lane-drop", "Lane-drop"}, {"cut-in", "Cut-in"}, {"merge", "Merge"}, {"pendulum", "Pendulum"}};
-  return lookup(names, scenario);
+  if (scenario == "pendulum") return "Pendulum";
+  if (!is_driving_scenario(scenario)) return scenario;
+  try {
+    return scenario_descriptor(scenario)->display_name;  // its descriptor says
+  } catch (const std::invalid_argument&) {
+    return scenario;  // a scenario file the report's machine does not have
+  }
 }
 
 }  // namespace rapid

@@ -8,7 +8,8 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "experiments/run/json_input.hpp"
+#include "core/json_input.hpp"
+#include "envs/scenario_descriptor.hpp"
 
 namespace rapid {
 
@@ -76,8 +77,11 @@ auto& holder(Config& config) {
 }
 
 bool driving(const std::string& scenario) { return is_driving_scenario(scenario); }
-bool merge_only(const std::string& scenario) { return scenario == "merge"; }
-bool cut_in_only(const std::string& scenario) { return scenario == "cut-in"; }
+// Keys of roads with an on-ramp flow, and of roads with cut-in obstacles (their descriptors say).
+bool merge_only(const std::string& scenario) { return driving(scenario) && scenario_descriptor(scenario)->has_ramp_inflow; }
+bool cut_in_only(const std::string& scenario) {
+  return driving(scenario) && scenario_descriptor(scenario)->hook == kCutInObstaclesHook;
+}
 
 // A row: the key's name, its field, the values it accepts and what it means.
 template <typename T, typename Holder>
@@ -110,6 +114,19 @@ ConfigKey choice_key(std::string name, std::string ScenarioSettings::*field, con
   k.read = [name, field, choices, list](const nlohmann::json& v, RunConfig& config) {
     if (!v.is_string() || std::find(choices.begin(), choices.end(), v.get<std::string>()) == choices.end())
       reject(name, "expects one of " + list + ", got " + v.dump());
+    config.scenario.*field = v.get<std::string>();
+  };
+  k.write = [field](const RunConfig& config) { return nlohmann::json(config.scenario.*field); };
+  return k;
+}
+
+// A row whose value names one of the things the scenario's descriptor defines (its networks):
+// any non-empty string here, checked against the descriptor with the whole config.
+ConfigKey descriptor_choice_key(std::string name, std::string ScenarioSettings::*field, std::string type,
+                                std::string doc) {
+  ConfigKey k{name, ConfigPart::kScenario, std::move(type), kAny, std::move(doc), driving, {}, {}, {}};
+  k.read = [name, field](const nlohmann::json& v, RunConfig& config) {
+    if (!v.is_string() || v.get<std::string>().empty()) reject(name, "expects a name, got " + v.dump());
     config.scenario.*field = v.get<std::string>();
   };
   k.write = [field](const RunConfig& config) { return nlohmann::json(config.scenario.*field); };
@@ -214,8 +231,9 @@ const std::vector<ConfigKey>& config_keys() {
           "decisions per point of the logged loss curves (mean over the window's updates)"),
       key("buffer_capacity", &RunConfig::buffer_capacity, kPositive,
           "capacity of the online replay buffer (a run stores at most `steps` transitions)"),
-      choice_key("network", &ScenarioSettings::network, network_variants(),
-                 "road geometry: the short road or the 4.5 km long one (docs/scenarios.md)"),
+      descriptor_choice_key("network", &ScenarioSettings::network, "a network of the scenario",
+                            "road geometry, one of the scenario file's networks: the built-ins' short road or "
+                            "their 4.5 km long one (docs/scenarios.md)"),
       key("action_repeat", &ScenarioSettings::action_repeat, {.lo = 1, .hi = 50},
           "SUMO steps of 0.1 s per decision", driving),
       key("horizon", &ScenarioSettings::horizon, {.lo = 1, .hi = 100000}, "decisions per episode", driving),

@@ -1,6 +1,6 @@
 #include "experiments/run/record.hpp"
 
-#include "experiments/run/json_input.hpp"
+#include "core/json_input.hpp"
 #include "experiments/run/json_numbers.hpp"
 #include "experiments/run/provenance.hpp"
 

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "core/printable.hpp"
-#include "experiments/run/json_input.hpp"
+#include "envs/scenario_descriptor.hpp"
+#include "core/json_input.hpp"
 
 namespace rapid {
 
@@ -30,11 +32,58 @@ void check_profile(const std::string& profile, const std::string& scenario) {
   const auto& names = config_profiles();
   if (std::find(names.begin(), names.end(), profile) == names.end())
     throw std::invalid_argument("unknown profile '" + profile + "' (profiles: short, flow)");
+  if (is_scenario_file(scenario)) {
+    if (!scenario_descriptor(scenario)->profiles.contains(profile))
+      throw std::invalid_argument("scenario file " + scenario + " has no '" + profile + "' profile (profiles." +
+                                  profile + " is missing)");
+    return;
+  }
   if (!std::filesystem::exists(config_path(scenario, profile)))
     throw std::invalid_argument("scenario '" + scenario + "' has no '" + profile + "' profile");
 }
 
+nlohmann::json shared_profile_config(const std::string& profile) {
+  std::optional<nlohmann::json> shared;
+  for (const std::string& scenario : env_names()) {
+    if (!is_driving_scenario(scenario) || !std::filesystem::exists(config_path(scenario, profile))) continue;
+    const nlohmann::json config = default_config_json(scenario, profile);
+    if (!shared) {
+      shared = nlohmann::json::object();
+      for (const auto& [key, value] : config.items()) {
+        const ConfigKey* k = find_config_key(key);
+        if (k != nullptr && k->part != ConfigPart::kScenario) (*shared)[key] = value;
+      }
+      continue;
+    }
+    for (auto it = shared->begin(); it != shared->end();)
+      it = config.contains(it.key()) && config.at(it.key()) == it.value() ? std::next(it) : shared->erase(it);
+  }
+  if (!shared) throw std::invalid_argument("profile '" + profile + "' has no driving scenario");
+  return *shared;
+}
+
+namespace {
+// A scenario file's config in `profile`: the profile's shared keys, the descriptor's settings as
+// the scenario keys, then the descriptor's keys for that profile.
+nlohmann::json file_scenario_config(const std::string& scenario, const std::string& profile) {
+  check_profile(profile, scenario);
+  const auto descriptor = scenario_descriptor(scenario);
+  nlohmann::json config = shared_profile_config(profile);
+  RunConfig with_defaults;
+  with_defaults.scenario = descriptor->defaults;
+  for (const ConfigKey& key : config_keys())
+    if (key.part == ConfigPart::kScenario && key.applies_to(scenario)) config[key.name] = key.write(with_defaults);
+  const std::string origin = "scenario file " + scenario + ": profiles." + profile;
+  apply_overrides(config, descriptor->profiles.at(profile), scenario, origin);
+  for (const ConfigKey& key : config_keys())
+    if (!key.optional() && key.applies_to(scenario) && !config.contains(key.name))
+      throw std::invalid_argument(origin + ": must give '" + key.name + "' (the profile's scenarios differ in it)");
+  return config;
+}
+}  // namespace
+
 nlohmann::json default_config_json(const std::string& scenario, const std::string& profile) {
+  if (is_scenario_file(scenario)) return file_scenario_config(scenario, profile);
   const std::string path = config_path(scenario, profile);
   nlohmann::json j;
   try {

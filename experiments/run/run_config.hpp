@@ -26,8 +26,13 @@ inline constexpr const char* kDefaultProfile = "short";
 void check_profile(const std::string& profile, const std::string& scenario);
 
 // The config file of `scenario` in `profile` as it is (throws std::runtime_error if it is missing
-// or not a JSON object; its keys are checked when it is parsed).
+// or not a JSON object; its keys are checked when it is parsed). For a scenario file (.json), the
+// profile's shared keys, the descriptor's settings, then the descriptor's "profiles" entry.
 nlohmann::json default_config_json(const std::string& scenario, const std::string& profile = kDefaultProfile);
+
+// The agent and schedule keys on which every built-in driving scenario's config of `profile`
+// agrees: what a scenario file's run takes from the profile (its own keys may override them).
+nlohmann::json shared_profile_config(const std::string& profile);
 
 // Applies `overrides` (an object) onto `config`, a config of `scenario`: each key must be a config
 // key of that scenario with a valid value. Throws std::invalid_argument "ORIGIN: …" naming the key.

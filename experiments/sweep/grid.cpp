@@ -11,7 +11,7 @@
 #include "experiments/run/config_keys.hpp"
 #include "experiments/run/dataset_build.hpp"
 #include "experiments/run/job.hpp"
-#include "experiments/run/json_input.hpp"
+#include "core/json_input.hpp"
 #include "experiments/run/run_config.hpp"
 
 namespace rapid {

@@ -6,7 +6,7 @@
 #include "core/hash.hpp"
 #include "experiments/run/dataset_build.hpp"
 #include "experiments/run/job.hpp"
-#include "experiments/run/json_input.hpp"
+#include "core/json_input.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/run/run_config.hpp"
 #include "experiments/sweep/cell_record.hpp"

@@ -39,7 +39,7 @@ TEST(DrivingControl, FullThrottleIntoASlowerLeaderIsACollision) {
 TEST(DrivingControl, LeftAndRightCommandsMoveTheEgoOneLane) {
   auto env = test::make_driving("cut-in");
   Vec obs(env->obs_dim());
-  const int interval = env->config().settings.lane_change_interval;
+  const int interval = env->settings().lane_change_interval;
   int tested = 0;
   for (std::uint64_t seed = 1; seed <= 30 && tested < 3; ++seed) {
     env->reset(seed, obs);
@@ -111,9 +111,9 @@ TEST(DrivingControl, AccelerationCommandIsApplied) {
   Vec obs(env->obs_dim());
   env->reset(2, obs);
   const double v0 = env->ego().speed;
-  const double dt = env->config().settings.action_repeat * env->config().step_length;
+  const double dt = env->settings().action_repeat * env->scenario().step_length;
   env->step(act(-0.5f, 0.0f), obs);
-  EXPECT_NEAR(env->ego().speed, std::max(0.0, v0 - 0.5 * env->config().max_accel * dt), 1e-6);
+  EXPECT_NEAR(env->ego().speed, std::max(0.0, v0 - 0.5 * env->scenario().max_accel * dt), 1e-6);
 }
 
 }  // namespace

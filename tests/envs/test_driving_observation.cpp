@@ -50,7 +50,7 @@ TEST(DrivingObservation, GapEntriesMatchTheLeaderAndFollower) {
   env->reset(4, obs);
   for (int t = 0; t < 60; ++t) env->step(action, obs);
   const auto& e = env->ego();
-  const double range = env->config().sensing_range;
+  const double range = env->scenario().sensing_range;
   // Current lane: entries 7-10.
   if (e.leader[1].present) {
     EXPECT_NEAR(obs[7], e.leader[1].gap / range, 1e-6);
@@ -61,18 +61,19 @@ TEST(DrivingObservation, GapEntriesMatchTheLeaderAndFollower) {
   if (e.follower[1].present) {
     EXPECT_NEAR(obs[9], -e.follower[1].gap / range, 1e-6);
   }
-  EXPECT_NEAR(obs[0], 2.0 * e.speed / env->config().speed_norm - 1.0, 1e-6);
+  EXPECT_NEAR(obs[0], 2.0 * e.speed / env->scenario().speed_norm - 1.0, 1e-6);
 }
 
 TEST(DrivingErrors, MissingNetworkIsAClearError) {
-  auto env = make_env("merge");
-  Vec obs(env->obs_dim());
+  // The built networks and the descriptors beside them are found when the env is made.
   setenv("RAPID_NETWORK_DIR", "/nonexistent/networks", 1);
   try {
-    env->reset(1, obs);
-    ADD_FAILURE() << "reset without a network did not throw";
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("/nonexistent/networks/merge/merge.net.xml"), std::string::npos) << e.what();
+    make_env("merge");
+    ADD_FAILURE() << "making an env without its network did not throw";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("/nonexistent/networks/merge/scenario.json"), std::string::npos) << what;
+    EXPECT_NE(what.find("build the 'rapid_networks' target or set RAPID_NETWORK_DIR"), std::string::npos) << what;
   }
   unsetenv("RAPID_NETWORK_DIR");
 }

@@ -3,7 +3,8 @@
 
 #include <libsumo/libsumo.h>
 
-#include "envs/cut_in.hpp"
+#include "envs/driving_env.hpp"
+#include "envs/scenario_hooks.hpp"
 #include "tests/envs/driving_test_util.hpp"
 
 namespace rapid {
@@ -59,26 +60,27 @@ TEST(LaneDrop, TrafficIsCongested) {
   int n = 0;
   for (const auto& id : libsumo::Edge::getLastStepVehicleIDs("in")) sum += libsumo::Vehicle::getSpeed(id), ++n;
   ASSERT_GT(n, 30);
-  EXPECT_LT(sum / n, 0.8 * env->config().settings.desired_speed);
+  EXPECT_LT(sum / n, 0.8 * env->settings().desired_speed);
 }
 
 TEST(CutIn, ObstaclesAreSlowerThanTheDesiredSpeedAndCutIn) {
-  auto env = std::make_unique<CutInEnv>(default_scenario_settings("cut-in"));
+  auto env = make_driving_env("cut-in", default_scenario_settings("cut-in"));
+  const auto& obstacles = dynamic_cast<const CutInObstacles&>(*env->hook());
   env->set_builtin_driver(true);
   Vec obs(env->obs_dim()), action = Vec::Zero(2);
   int cut_ins = 0;
   for (std::uint64_t seed = 1; seed <= 4 && cut_ins == 0; ++seed) {
     env->reset(seed, obs);
-    for (double v : env->obstacle_speeds()) EXPECT_LT(v, env->config().settings.desired_speed - 5.0);
+    for (double v : obstacles.obstacle_speeds()) EXPECT_LT(v, env->settings().desired_speed - 5.0);
     for (bool done = false; !done;) {
       const StepResult r = env->step(action, obs);
       done = r.terminated || r.truncated;
-      for (std::size_t k = 0; k < env->obstacle_speeds().size(); ++k) {
+      for (std::size_t k = 0; k < obstacles.obstacle_speeds().size(); ++k) {
         const std::string id = "obs" + std::to_string(k);
-        EXPECT_LE(libsumo::Vehicle::getSpeed(id), env->obstacle_speeds()[k] + 1e-6);
+        EXPECT_LE(libsumo::Vehicle::getSpeed(id), obstacles.obstacle_speeds()[k] + 1e-6);
       }
     }
-    cut_ins += env->completed_cut_ins();
+    cut_ins += obstacles.completed_cut_ins();
   }
   EXPECT_GT(cut_ins, 0) << "no obstacle cut into the ego's lane";
 }

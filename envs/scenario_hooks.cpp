@@ -1,5 +1,8 @@
-#include "envs/cut_in.hpp"
+#include "envs/scenario_hooks.hpp"
 
+#include <stdexcept>
+
+#include "envs/driving_env.hpp"
 #include "envs/sumo_api.hpp"
 
 namespace rapid {
@@ -8,14 +11,6 @@ RAPID_SUMO_BACKEND_BEGIN
 namespace {
 using sumo_api::Vehicle;
 
-DrivingConfig cut_in_config(const ScenarioSettings& settings) {
-  DrivingConfig c;
-  c.settings = settings;
-  c.scenario = "cut-in";
-  c.edges = {"road"};
-  c.ego_route = "main";
-  return c;
-}
 // Obstacle ids are "obs<k>"; returns k, or -1 for any other vehicle.
 int obstacle_index(const std::string& id) {
   if (id.size() < 4 || id.compare(0, 3, "obs") != 0) return -1;
@@ -32,27 +27,27 @@ constexpr int kObstacleLaneChangeMode = 256;
 constexpr double kCutInDuration = 3.0;  // s the cut-in request stays active
 }  // namespace
 
-CutInEnv::CutInEnv(const ScenarioSettings& settings) : DrivingEnv(cut_in_config(settings)) {
-  const int n = settings.obstacles;
-  for (int k = 0; k < n; ++k) id_.push_back("obs" + std::to_string(k));
-  speed_.assign(n, 0.0);
-  trigger_gap_.assign(n, 0.0);
-  cutter_.assign(n, 0);
-  cut_.assign(n, 0);
+CutInObstacles::CutInObstacles(int obstacles) {
+  for (int k = 0; k < obstacles; ++k) id_.push_back("obs" + std::to_string(k));
+  speed_.assign(obstacles, 0.0);
+  trigger_gap_.assign(obstacles, 0.0);
+  cutter_.assign(obstacles, 0);
+  cut_.assign(obstacles, 0);
 }
 
-void CutInEnv::populate(Rng& rng) {
+void CutInObstacles::populate(const DrivingEnv& env, Rng& rng) {
   // At time 0, before any human: spread ahead of where the ego will enter, in random lanes.
   double pos = rng.uniform(60.0, 160.0);
-  const int lanes = road().edge("road").lanes;
-  const ScenarioSettings& settings = config().settings;
+  const ScenarioDescriptor& scenario = env.scenario();
+  const int lanes = env.road().edge(scenario.ego.depart_edge).lanes;
+  const ScenarioSettings& settings = env.settings();
   for (std::size_t k = 0; k < id_.size(); ++k) {
     speed_[k] = rng.uniform(settings.obstacle_speed_min, settings.obstacle_speed_max);
     cutter_[k] = rng.uniform() < 0.6;
     trigger_gap_[k] = rng.uniform(8.0, 25.0);
     cut_[k] = false;
     const int lane = static_cast<int>(rng.index(lanes));
-    Vehicle::add(id_[k], "main", "obstacle", "now", std::to_string(lane), std::to_string(pos),
+    Vehicle::add(id_[k], scenario.ego.route, kObstacleType, "now", std::to_string(lane), std::to_string(pos),
                  std::to_string(speed_[k]));
     Vehicle::setMaxSpeed(id_[k], speed_[k]);
     Vehicle::setLaneChangeMode(id_[k], kObstacleLaneChangeMode);
@@ -62,17 +57,15 @@ void CutInEnv::populate(Rng& rng) {
   completed_ = 0;
 }
 
-int CutInEnv::ego_depart_lane(Rng& rng) { return static_cast<int>(rng.index(road().edge("road").lanes)); }
-
-void CutInEnv::after_observe() {
-  const EgoState& e = ego();
+void CutInObstacles::after_observe(const DrivingEnv& env) {
+  const DrivingEnv::EgoState& e = env.ego();
   if (pending_ >= 0) {
     if (e.leader[1].present && obstacle_index(e.leader[1].id) == pending_) ++completed_;
     pending_ = -1;
   }
   // A cutter the ego comes up on in the next lane pulls in front of it (left = 0, right = 2).
   for (int side : {0, 2}) {
-    const Neighbor& n = e.leader[side];
+    const DrivingEnv::Neighbor& n = e.leader[side];
     if (!n.present) continue;
     const int k = obstacle_index(n.id);
     if (k < 0 || k >= static_cast<int>(id_.size()) || !cutter_[k] || cut_[k] || n.gap > trigger_gap_[k] || e.speed <= n.speed) continue;
@@ -81,6 +74,12 @@ void CutInEnv::after_observe() {
     pending_ = k;
     break;
   }
+}
+
+std::unique_ptr<ScenarioHook> make_scenario_hook(const std::string& name, const ScenarioSettings& settings) {
+  if (name.empty()) return nullptr;
+  if (name == kCutInObstaclesHook) return std::make_unique<CutInObstacles>(settings.obstacles);
+  throw std::invalid_argument("unknown scenario hook '" + name + "'");
 }
 
 RAPID_SUMO_BACKEND_END

@@ -1,4 +1,4 @@
-#include "experiments/run/json_input.hpp"
+#include "core/json_input.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>

@@ -1,0 +1,169 @@
+// A scenario as a file (docs/scenarios.md §Scenario files): a user's own road, built by netconvert
+// in the test's folder, runs and trains from its descriptor alone; a wrong descriptor is refused
+// with one line naming the field, before SUMO starts and before anything is written.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.hpp"
+#include "tests/cli_runner.hpp"
+
+#ifndef RAPID_NETCONVERT
+#error "RAPID_NETCONVERT must name netconvert"
+#endif
+
+using namespace rapid;
+using test::rapid_cli;
+namespace fs = std::filesystem;
+
+namespace {
+
+void write(const fs::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+}
+
+// A 1.5 km two-lane road with its humans and the ego's vehicle type, and a descriptor of it.
+class ScenarioFile : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(::testing::TempDir()) / ("scenario-file-" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    write(dir_ / "road.nod.xml", R"(<nodes><node id="a" x="0" y="0"/><node id="b" x="1500" y="0"/></nodes>)");
+    write(dir_ / "road.edg.xml", R"(<edges><edge id="road" from="a" to="b" numLanes="2" speed="30"/></edges>)");
+    write(dir_ / "road.rou.xml", R"(<routes>
+  <vType id="human" length="5" minGap="2.5" maxSpeed="40" accel="2.6" decel="4.5" tau="1.0" speedFactor="0.9"/>
+  <vType id="car" length="5" minGap="2.5" maxSpeed="40" speedFactor="0.8333"/>
+  <route id="main" edges="road"/>
+  <flow id="h0" type="human" route="main" begin="0" end="1e6" probability="INFLOW" departLane="0" departSpeed="desired"/>
+  <flow id="h1" type="human" route="main" begin="0" end="1e6" probability="INFLOW" departLane="1" departSpeed="desired"/>
+</routes>)");
+    const std::string netconvert = "SUMO_HOME=/usr/share/sumo " + std::string(RAPID_NETCONVERT) + " --node-files " +
+                                   (dir_ / "road.nod.xml").string() + " --edge-files " + (dir_ / "road.edg.xml").string() +
+                                   " --no-internal-links true --no-turnarounds true --no-warnings true --output-file " +
+                                   (dir_ / "road.net.xml").string() + " > /dev/null 2>&1";
+    ASSERT_EQ(std::system(netconvert.c_str()), 0) << netconvert;
+    descriptor_ = {
+        {"name", "two-lane"},
+        {"display_name", "Two-lane road"},
+        {"networks", {{"default", {{"net", "road.net.xml"}, {"routes", "road.rou.xml"}}}}},
+        {"road", {"road"}},
+        {"ego", {{"route", "main"}, {"type", "car"}, {"depart_lane", "random"}}},
+        {"observation", {{"features", {{{"kind", "distance_to_edge"}, {"edge", "road"}, {"range", 500}}}}}},
+        {"settings", {{"inflow", 900}, {"horizon", 100}}},
+        {"profiles", {{"short", {{"steps", 400}, {"eval_every", 200}, {"epsilon", -0.15}}}}},
+    };
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Writes the descriptor (as changed by the test) and returns its path.
+  std::string descriptor_file(const std::string& name = "road.json") const {
+    const fs::path path = dir_ / name;
+    write(path, descriptor_.dump(2));
+    return path.string();
+  }
+
+  fs::path dir_;
+  nlohmann::json descriptor_;
+};
+
+TEST_F(ScenarioFile, RunsAndTrainsAFewHundredStepsOnItsOwnRoad) {
+  const std::string file = descriptor_file();
+  const auto rollout = rapid_cli("rollout --scenario " + file + " --policy sumo --episodes 2 --seed 4 --json", true);
+  ASSERT_EQ(rollout.exit_code, 0) << rollout.text;
+  const nlohmann::json episodes = nlohmann::json::parse(rollout.text);
+  ASSERT_EQ(episodes.at("episodes").size(), 2u) << rollout.text;
+  // SUMO's driver on an empty-ish straight road keeps going until the horizon.
+  for (const auto& e : episodes.at("episodes")) EXPECT_EQ(e.at("length").get<int>(), 100) << rollout.text;
+
+  const std::string out = (dir_ / "run").string();
+  const auto run = rapid_cli("run --scenario " + file + " --algo ddpg --seed 3 --set eval_episodes=2 --set warmup_steps=100 --out " + out, true);
+  ASSERT_EQ(run.exit_code, 0) << run.text;
+  const nlohmann::json record = nlohmann::json::parse(read_file(out + "/record.json"));
+  EXPECT_EQ(record.at("status"), "ok");
+  EXPECT_EQ(record.at("cell").at("scenario"), file);
+  EXPECT_EQ(record.at("config").at("steps"), 400);
+  EXPECT_EQ(record.at("config").at("horizon"), 100);
+  EXPECT_EQ(record.at("config").at("network"), "default");
+  // Updates from the first decision after the warm-up at which a batch can be drawn.
+  EXPECT_GT(record.at("updates").get<long long>(), 250);
+}
+
+// One wrong thing in the descriptor, and what the one-line refusal must name.
+struct BadDescriptor {
+  std::string what;
+  std::function<void(nlohmann::json&, const fs::path&)> spoil;
+  std::string message;
+};
+
+TEST_F(ScenarioFile, AWrongDescriptorIsRefusedNamingTheFieldBeforeAnythingIsWritten) {
+  const std::vector<BadDescriptor> cases = {
+      {"a missing network file", [](nlohmann::json& d, const fs::path&) { d["networks"]["default"]["net"] = "nowhere.net.xml"; },
+       "networks.default.net: no such file"},
+      {"an edge not in the network", [](nlohmann::json& d, const fs::path&) { d["road"] = {"road", "bridge"}; },
+       "road: edge 'bridge' is not in"},
+      {"a route not in the routes", [](nlohmann::json& d, const fs::path&) { d["ego"]["route"] = "detour"; },
+       "ego.route: route 'detour' is not in"},
+      {"an ego that can never enter", [](nlohmann::json& d, const fs::path&) { d["ego"]["depart_lane"] = 4; },
+       "ego.depart_lane: the ego's first edge 'road' has 2 lanes"},
+      {"an ego type nobody defines", [](nlohmann::json& d, const fs::path&) { d["ego"]["type"] = "truck"; },
+       "ego.type: vehicle type 'truck' is in none of"},
+      {"an unknown observation feature",
+       [](nlohmann::json& d, const fs::path&) { d["observation"]["features"][0]["kind"] = "time_to_collision"; },
+       "observation.features[0].kind: unknown feature 'time_to_collision'"},
+      {"an unknown reward", [](nlohmann::json& d, const fs::path&) { d["settings"]["reward"] = "comfort"; },
+       "settings: reward: 'comfort' is not one of"},
+      {"a negative horizon", [](nlohmann::json& d, const fs::path&) { d["settings"]["horizon"] = -5; },
+       "settings: horizon: must be 1 to 100000"},
+      {"a misspelt field", [](nlohmann::json& d, const fs::path&) { d["obsevation"] = nlohmann::json::object(); },
+       "obsevation: unknown field"},
+      {"a hook nobody wrote", [](nlohmann::json& d, const fs::path&) { d["hook"] = "roadworks"; },
+       "hook: unknown hook 'roadworks'"},
+      {"no profile for the run", [](nlohmann::json& d, const fs::path&) { d["profiles"].erase("short"); },
+       "has no 'short' profile"},
+      {"not JSON", [](nlohmann::json&, const fs::path& file) { write(file, "{\"name\": "); }, "not valid JSON"},
+  };
+  const nlohmann::json good = descriptor_;
+  for (const BadDescriptor& c : cases) {
+    SCOPED_TRACE(c.what);
+    descriptor_ = good;
+    const fs::path file = dir_ / "bad.json";
+    c.spoil(descriptor_, file);
+    if (c.what != "not JSON") descriptor_file("bad.json");
+    const std::string out = (dir_ / "bad-run").string();
+    std::vector<std::string> commands = {"run --scenario " + file.string() + " --algo ddpg --seed 1 --out " + out};
+    // A rollout without --profile takes the descriptor's settings and needs no profile.
+    if (c.what != "no profile for the run")
+      commands.push_back("rollout --scenario " + file.string() + " --policy random --episodes 1");
+    for (const std::string& command : commands) {
+      const auto r = rapid_cli(command, true);
+      EXPECT_EQ(r.exit_code, 2) << command << "\n" << r.text;
+      EXPECT_NE(r.text.find(c.message), std::string::npos) << r.text;
+      EXPECT_NE(r.text.find(file.string()), std::string::npos) << "the line names the file: " << r.text;
+      EXPECT_EQ(std::count(r.text.begin(), r.text.end(), '\n'), 1) << r.text;
+      EXPECT_FALSE(fs::exists(out)) << "nothing is written";
+    }
+  }
+}
+
+TEST(BuiltInScenarios, AreTheirShippedDescriptors) {
+  // The three built-ins are descriptor files beside their networks, and `--scenario` takes the
+  // file as well as the name.
+  for (const std::string scenario : {"lane-drop", "cut-in", "merge"}) {
+    const std::string source = std::string(RAPID_SOURCE_DIR) + "/envs/networks/" + scenario + "/scenario.json";
+    const nlohmann::json d = nlohmann::json::parse(read_file(source));
+    EXPECT_EQ(d.at("name"), scenario);
+    const auto by_name = rapid_cli("rollout --scenario " + scenario + " --policy zero --episodes 1 --seed 2 --json");
+    const auto by_file = rapid_cli("rollout --scenario " + std::string(RAPID_NETWORK_DIR) + "/" + scenario +
+                                   "/scenario.json --policy zero --episodes 1 --seed 2 --json");
+    ASSERT_EQ(by_name.exit_code, 0) << by_name.text;
+    EXPECT_EQ(by_name.text, by_file.text) << scenario;
+  }
+}
+
+}  // namespace
