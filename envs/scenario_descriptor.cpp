@@ -156,9 +156,12 @@ std::vector<std::string> start_tags(const std::string& xml, const std::string& e
   return tags;
 }
 
-// The ids of the network's normal edges (internal ones, ':…', are junction lanes), and their lanes.
-std::map<std::string, int> network_edges(const std::string& net_file) {
+// The ids of the network's normal edges and their lanes. A network with junction-internal lanes
+// (edges ':…') is refused: the env needs every vehicle on one of the road's edges.
+std::map<std::string, int> network_edges(const std::string& net_file, const std::string& where) {
   const std::string xml = read_text(net_file);
+  if (xml.find("function=\"internal\"") != std::string::npos)
+    Reader::fail(where, net_file + " has junction-internal lanes: build it with netconvert --no-internal-links true");
   std::map<std::string, int> edges;
   const std::string open = "<edge";
   for (auto at = xml.find(open); at != std::string::npos; at = xml.find(open, at + 1)) {
@@ -325,7 +328,7 @@ ScenarioDescriptor read_descriptor(const std::string& path) {
 
   // The network-independent checks first; then the files: the road's edges, the ego's route.
   for (const auto& [variant, files] : d.networks) {
-    const auto edges = network_edges(files.net);
+    const auto edges = network_edges(files.net, "networks." + variant + ".net");
     for (const std::string& e : d.road)
       if (!edges.contains(e)) Reader::fail("road", "edge '" + printable(e) + "' is not in " + files.net);
     auto check_edge = [&](const std::string& e, const std::string& where) {
