@@ -63,7 +63,10 @@ std::unique_ptr<Env> make_env(const std::string& name);
 // A driving scenario with the given settings (throws std::invalid_argument naming a bad setting,
 // or for the pendulum, which has none).
 std::unique_ptr<Env> make_env(const std::string& name, const ScenarioSettings& settings);
-// lane-drop, cut-in and merge: the scenarios that take ScenarioSettings.
+// lane-drop, cut-in, merge and scenario files (a path, or a name a grid registered): the scenarios
+// that take ScenarioSettings.
 bool is_driving_scenario(const std::string& name);
+// One of env_names(): shipped with the harness, not a scenario file.
+bool is_builtin_scenario(const std::string& name);
 
 }  // namespace rapid

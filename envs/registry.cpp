@@ -1,4 +1,5 @@
 // The name → environment table behind `--scenario`.
+#include <algorithm>
 #include <stdexcept>
 
 #include "core/printable.hpp"
@@ -20,8 +21,14 @@ const std::vector<std::string>& env_names() {
   return names;
 }
 
+bool is_builtin_scenario(const std::string& name) {
+  const auto& names = env_names();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
 bool is_driving_scenario(const std::string& name) {
-  return name == "lane-drop" || name == "cut-in" || name == "merge" || is_scenario_file(name);
+  return name == "lane-drop" || name == "cut-in" || name == "merge" || is_scenario_file(name) ||
+         is_registered_scenario(name);
 }
 
 std::unique_ptr<Env> make_env(const std::string& name) {

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/hash.hpp"
 #include "core/json_input.hpp"
 #include "core/printable.hpp"
 
@@ -397,9 +398,52 @@ ScenarioDescriptor read_scenario_descriptor(const std::string& path) {
   }
 }
 
+namespace {
+std::mutex& registry_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+// Names a grid gave to scenario files → the files' absolute paths.
+std::map<std::string, std::string>& registered_files() {
+  static std::map<std::string, std::string> files;
+  return files;
+}
+}  // namespace
+
+void register_scenario_file(const std::string& name, const std::string& path) {
+  const std::string absolute = fs::absolute(path).lexically_normal().string();
+  const auto d = scenario_descriptor(absolute);
+  if (d->name != name)
+    throw std::invalid_argument("scenario file " + absolute + ": name: '" + printable(d->name) + "', but it is given as '" +
+                                printable(name) + "'");
+  std::lock_guard<std::mutex> lock(registry_mutex());
+  auto& files = registered_files();
+  if (const auto it = files.find(name); it != files.end() && it->second != absolute)
+    throw std::invalid_argument("scenario '" + name + "' is already the file " + it->second);
+  files[name] = absolute;
+}
+
+bool is_registered_scenario(const std::string& name) {
+  std::lock_guard<std::mutex> lock(registry_mutex());
+  return registered_files().contains(name);
+}
+
+std::string scenario_files_hash(const ScenarioDescriptor& d) {
+  std::string all = read_text(d.file);
+  for (const auto& [variant, files] : d.networks) all += "\n" + read_text(files.net) + "\n" + read_text(files.routes);
+  for (const std::string& f : d.additional_files) all += "\n" + read_text(f);
+  return fnv1a_hex(all);
+}
+
 std::shared_ptr<const ScenarioDescriptor> scenario_descriptor(const std::string& name) {
   static std::mutex mutex;
   static std::map<std::string, std::shared_ptr<const ScenarioDescriptor>> cache;
+  std::string registered;
+  {
+    std::lock_guard<std::mutex> lock(registry_mutex());
+    if (const auto it = registered_files().find(name); it != registered_files().end()) registered = it->second;
+  }
+  if (!registered.empty()) return scenario_descriptor(registered);
   const std::string path = is_scenario_file(name) ? name : network_dir() + "/" + name + "/scenario.json";
   if (!is_scenario_file(name) && !fs::exists(path))
     throw std::invalid_argument("scenario '" + printable(name) + "': its descriptor " + path +

@@ -96,9 +96,21 @@ ScenarioDescriptor read_scenario_descriptor(const std::string& path);
 // True for a name that stands for a descriptor file rather than a built-in scenario.
 bool is_scenario_file(const std::string& name);
 
-// The descriptor of a built-in scenario (its scenario.json under network_dir()) or of a file
-// (`name` ending in .json), read once per process and shared.
+// Makes `name` stand for the descriptor at `path` in this process (a grid's "scenario_files", so
+// that its jobs, folders and tables use a short name). The descriptor is read and checked; throws
+// std::invalid_argument if its own name is not `name`, or `name` is already another file's.
+void register_scenario_file(const std::string& name, const std::string& path);
+// True for a name register_scenario_file() gave in this process.
+bool is_registered_scenario(const std::string& name);
+
+// The descriptor of a built-in scenario (its scenario.json under network_dir()), of a registered
+// name, or of a file (`name` ending in .json), read once per process and shared.
 std::shared_ptr<const ScenarioDescriptor> scenario_descriptor(const std::string& name);
+
+// A hash of what a scenario file's runs depend on beyond their config: the descriptor and every
+// file it names (network, routes, additional files), so that editing any of them makes earlier
+// records stale.
+std::string scenario_files_hash(const ScenarioDescriptor& d);
 
 // Where the built networks and built-in descriptors live: $RAPID_NETWORK_DIR if set, else the
 // build's networks/ folder (compiled in).

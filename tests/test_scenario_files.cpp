@@ -94,6 +94,38 @@ TEST_F(ScenarioFile, RunsAndTrainsAFewHundredStepsOnItsOwnRoad) {
   EXPECT_GT(record.at("updates").get<long long>(), 250);
 }
 
+TEST_F(ScenarioFile, AGridSweepsItByItsNameAndAnEditedFileMakesItsRecordsStale) {
+  descriptor_file();
+  const nlohmann::json grid = {
+      {"name", "two-lane-small"},
+      {"scenario_files", {{"two-lane", "road.json"}}},  // relative to the grid's folder
+      {"scenarios", {"two-lane"}},
+      {"datasets", {"initial"}},
+      {"algos", {"ddpg"}},
+      {"seeds", {0, 1}},
+      {"config", {{"steps", 300}, {"eval_every", 150}, {"eval_episodes", 1}, {"warmup_steps", 100}}},
+  };
+  write(dir_ / "grid.json", grid.dump(2));
+  const std::string sweep = (dir_ / "sweep").string();
+  const auto first = rapid_cli("sweep " + (dir_ / "grid.json").string() + " --jobs 2 --no-summary --out " + sweep, true);
+  ASSERT_EQ(first.exit_code, 0) << first.text;
+  for (const std::string seed : {"0", "1"}) {
+    const nlohmann::json record =
+        nlohmann::json::parse(read_file(sweep + "/jobs/two-lane/none/ddpg/seed" + seed + "/record.json"));
+    EXPECT_EQ(record.at("status"), "ok");
+    EXPECT_EQ(record.at("cell").at("scenario"), "two-lane");
+  }
+  const auto summary = rapid_cli("summarize " + sweep + " --no-plots", true);
+  ASSERT_EQ(summary.exit_code, 0) << summary.text;
+  EXPECT_NE(read_file(sweep + "/table.md").find("| Two-lane road |"), std::string::npos) << "the descriptor's display name";
+
+  // The sweep's jobs depend on the scenario's files: a change to its routes makes them stale.
+  write(dir_ / "road.rou.xml", read_file((dir_ / "road.rou.xml").string()) + "<!-- edited -->\n");
+  const auto status = rapid_cli("status --json " + sweep, true);
+  ASSERT_EQ(status.exit_code, 0) << status.text;
+  EXPECT_EQ(nlohmann::json::parse(status.text).at("counts").at("stale"), 2) << status.text;
+}
+
 // One wrong thing in the descriptor, and what the one-line refusal must name.
 struct BadDescriptor {
   std::string what;
@@ -199,6 +231,20 @@ TEST(ShippedScenarioFiles, FlowMergeRunsFromItsDescriptorAlone) {
     EXPECT_LT(e.at("length").get<int>(), 150) << r.text;
     EXPECT_GT(e.at("return").get<double>(), 30.0) << r.text;
   }
+}
+
+TEST(ShippedScenarioFiles, FlowMergeRunsThroughASweepAndItsReports) {
+  // experiments/grids/flow-merge-smoke.json: reference agent, datasets, the paper's five, reports.
+  const std::string grid = std::string(RAPID_SOURCE_DIR) + "/experiments/grids/flow-merge-smoke.json";
+  const fs::path out = fs::path(::testing::TempDir()) / ("flow-merge-smoke-" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  const auto r = rapid_cli("sweep " + grid + " --jobs 2 --out " + out.string(), true);
+  ASSERT_EQ(r.exit_code, 0) << r.text;
+  EXPECT_NE(r.text.find("15 ok"), std::string::npos) << r.text;
+  const std::string table = read_file((out / "table.md").string());
+  for (const std::string row : {"| FLOW merge | Initial |", "| FLOW merge | Medium |", "| FLOW merge | Final+Medium |"})
+    EXPECT_NE(table.find(row), std::string::npos) << row << "\n" << table;
+  fs::remove_all(out);
 }
 
 TEST(ShippedScenarioFiles, FlowMergeNetworkIsTheOneItsSourcesBuild) {

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.hpp"
+#include "envs/scenario_descriptor.hpp"
 #include "experiments/cli/errors.hpp"
 #include "experiments/cli/output_folder.hpp"
 #include "experiments/run/run_config.hpp"
@@ -50,7 +51,9 @@ ScenarioSettings rollout_settings(const std::string& scenario, const WatchOption
   const nlohmann::json record = read_run_record(w.settings_from);
   const nlohmann::json* cell = record.contains("cell") && record["cell"].is_object() ? &record["cell"] : nullptr;
   const std::string ran = cell ? cell->value("scenario", "") : "";
-  if (ran != scenario)
+  // A scenario file's run may have named it by the name its grid gave it.
+  const bool same_file = is_scenario_file(scenario) && ran == scenario_descriptor(scenario)->name;
+  if (ran != scenario && !same_file)
     throw UsageError("--settings-from: the run is of scenario '" + ran + "', not '" + scenario + "'");
   if (!record.contains("config") || !record["config"].is_object())
     throw UsageError("--settings-from: the run record has no config");

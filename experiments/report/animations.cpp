@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "envs/env.hpp"
+#include "envs/scenario_descriptor.hpp"
 #include "experiments/report/plot.hpp"
 #include "experiments/sweep/state.hpp"
 
@@ -99,7 +100,10 @@ int write_animations(const Summary& summary, const fs::path& out_dir, std::ostre
     const fs::path trace = out_dir / (name + ".trace.json");
     const fs::path gif = out_dir / (name + ".gif");
     const auto t0 = std::chrono::steady_clock::now();
-    const int rolled = run_command({self.string(), "rollout", "--scenario", pick.scenario, "--policy",
+    // A grid's scenario file is named by its path for the rollout, which does not read the grid.
+    const std::string scenario =
+        is_builtin_scenario(pick.scenario) ? pick.scenario : scenario_descriptor(pick.scenario)->file;
+    const int rolled = run_command({self.string(), "rollout", "--scenario", scenario, "--policy",
                                     (run / "actor.ckpt").string(), "--settings-from", run.string(), "--eval-traffic",
                                     "--episodes", "1", "--seed", "0", "--record", trace.string(), "--json"},
                                    /*quiet=*/true);

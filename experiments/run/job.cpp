@@ -6,6 +6,8 @@
 #include "algos/registry.hpp"
 #include "core/atomic_file.hpp"
 #include "core/hash.hpp"
+#include "envs/env.hpp"
+#include "envs/scenario_descriptor.hpp"
 
 namespace rapid {
 
@@ -40,6 +42,9 @@ std::string job_config_hash(const JobSpec& spec) {
                         {"config", spec.config}, {"dataset", nullptr}};
   if (!spec.dataset_path.empty()) key["dataset"] = fnv1a_hex(read_file(spec.dataset_path));
   if (!spec.checkpoint_steps.empty()) key["checkpoint_steps"] = spec.checkpoint_steps;
+  // A scenario file's runs also depend on its files (the built-ins' are part of the harness).
+  if (is_driving_scenario(spec.scenario) && !is_builtin_scenario(spec.scenario))
+    key["scenario_files"] = scenario_files_hash(*scenario_descriptor(spec.scenario));
   return fnv1a_hex(key.dump());
 }
 

@@ -23,6 +23,11 @@ const std::vector<std::string>& config_profiles() {
 }
 
 namespace {
+// A scenario file, named by its path or by the name a grid gave it.
+bool is_scenario_from_file(const std::string& scenario) {
+  return is_driving_scenario(scenario) && !is_builtin_scenario(scenario);
+}
+
 std::string config_path(const std::string& scenario, const std::string& profile) {
   return config_dir() + "/" + profile + "/" + scenario + ".json";
 }
@@ -32,7 +37,7 @@ void check_profile(const std::string& profile, const std::string& scenario) {
   const auto& names = config_profiles();
   if (std::find(names.begin(), names.end(), profile) == names.end())
     throw std::invalid_argument("unknown profile '" + profile + "' (profiles: short, flow)");
-  if (is_scenario_file(scenario)) {
+  if (is_scenario_from_file(scenario)) {
     if (!scenario_descriptor(scenario)->profiles.contains(profile))
       throw std::invalid_argument("scenario file " + scenario + " has no '" + profile + "' profile (profiles." +
                                   profile + " is missing)");
@@ -83,7 +88,7 @@ nlohmann::json file_scenario_config(const std::string& scenario, const std::stri
 }  // namespace
 
 nlohmann::json default_config_json(const std::string& scenario, const std::string& profile) {
-  if (is_scenario_file(scenario)) return file_scenario_config(scenario, profile);
+  if (is_scenario_from_file(scenario)) return file_scenario_config(scenario, profile);
   const std::string path = config_path(scenario, profile);
   nlohmann::json j;
   try {

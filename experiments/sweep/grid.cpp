@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <set>
 #include <stdexcept>
 
 #include "algos/registry.hpp"
 #include "core/printable.hpp"
 #include "envs/env.hpp"
+#include "envs/scenario_descriptor.hpp"
 #include "experiments/run/config_keys.hpp"
 #include "experiments/run/dataset_build.hpp"
 #include "experiments/run/job.hpp"
@@ -19,10 +21,11 @@ namespace rapid {
 namespace {
 
 using nlohmann::json;
+namespace fs = std::filesystem;
 
 const std::set<std::string> kTopLevelKeys = {"name",   "description",     "scenarios", "datasets",    "algos",
                                              "seeds",  "config",          "scenario_config", "reference",
-                                             "max_retries", "jobs", "profile", "axes"};
+                                             "max_retries", "jobs", "profile", "axes", "scenario_files"};
 // An axis longer than this is a mistake, not a study (each value is validated against the config).
 constexpr std::size_t kMaxAxisValues = 1000;
 // The double the default float came from, so grid.json shows 0.1 rather than 0.100000001.
@@ -231,7 +234,8 @@ std::string without_prefix(const std::string& text, const std::string& prefix) {
 // the overrides are reported against the object they came from.
 void check_overrides(const GridChecker& check, const Grid& grid) {
   for (const auto& [scenario, overrides] : grid.scenario_config.items()) {
-    const auto& names = env_names();
+    std::vector<std::string> names = env_names();
+    for (const auto& [name, file] : grid.scenario_files) names.push_back(name);
     if (std::find(names.begin(), names.end(), scenario) == names.end())
       check.fail("scenario_config." + scenario, "unknown scenario '" + scenario + "'; expected one of " + joined(names));
     if (!overrides.is_object()) check.fail("scenario_config." + scenario, "expected an object, got " + json_excerpt(overrides));
@@ -359,6 +363,32 @@ void check_algorithms_fit(const GridChecker& check, const Grid& grid) {
 
 }  // namespace
 
+// "scenario_files": name → descriptor path (relative to the grid file's folder), each registered
+// in this process under its name (envs/scenario_descriptor.hpp); written back as absolute paths.
+std::map<std::string, std::string> parse_scenario_files(const GridChecker& check, const json& doc,
+                                                        const std::string& label, Grid& grid) {
+  const json& files = check.object_or_empty(doc, "scenario_files");
+  const fs::path base = fs::absolute(fs::path(label)).parent_path();
+  for (const auto& [name, path] : files.items()) {
+    const std::string at = "scenario_files." + name;
+    if (name.empty() || name.size() > kMaxGridNameLength ||
+        name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-") != std::string::npos ||
+        is_scenario_file(name))
+      check.fail(at, "a scenario's name is 1-100 characters of [A-Za-z0-9._-], not ending in .json");
+    if (is_builtin_scenario(name)) check.fail(at, "'" + name + "' is a built-in scenario");
+    if (!path.is_string() || path.get<std::string>().empty())
+      check.fail(at, "expected the path of a scenario file, got " + json_excerpt(path));
+    const fs::path file = (base / path.get<std::string>()).lexically_normal();
+    try {
+      register_scenario_file(name, file.string());
+    } catch (const std::invalid_argument& e) {
+      check.fail(at, e.what());
+    }
+    grid.scenario_files[name] = file.string();
+  }
+  return grid.scenario_files;
+}
+
 Grid parse_grid(const json& doc, const std::string& label) {
   const GridChecker check(label);
   if (!doc.is_object()) check.fail("(top level)", "expected a JSON object");
@@ -369,7 +399,9 @@ Grid parse_grid(const json& doc, const std::string& label) {
     if (!doc["description"].is_string()) check.fail("description", "expected a string, got " + json_excerpt(doc["description"]));
     grid.description = doc["description"].get<std::string>();
   }
-  grid.scenarios = check.name_axis(doc, "scenarios", env_names(), "scenario");
+  std::vector<std::string> scenario_names = env_names();
+  for (const auto& [name, path] : parse_scenario_files(check, doc, label, grid)) scenario_names.push_back(name);
+  grid.scenarios = check.name_axis(doc, "scenarios", scenario_names, "scenario");
   grid.datasets = check.name_axis(doc, "datasets", dataset_names(), "dataset");
   grid.algos = check.name_axis(doc, "algos", algo_names(), "algorithm");
   grid.seeds = check.seed_axis(doc);
@@ -410,6 +442,7 @@ Grid parse_grid(const json& doc, const std::string& label) {
   if (!ref.contains("noise_std")) ref["noise_std"] = kDefaultReferenceNoise;
   grid.normalized["reference"] = ref;
   grid.normalized["max_retries"] = grid.max_retries;
+  if (!grid.scenario_files.empty()) grid.normalized["scenario_files"] = grid.scenario_files;
   return grid;
 }
 

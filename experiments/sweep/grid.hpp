@@ -5,7 +5,9 @@
 // Schema (JSON object; every key not listed is an error):
 //   "name"            string of [A-Za-z0-9._-], at most 100 characters: the default sweep folder is results/<name>/
 //   "description"     optional string
-//   "scenarios"       non-empty array of scenario names (env_names()), no duplicates
+//   "scenarios"       non-empty array of scenario names (env_names() or a name of "scenario_files"), no duplicates
+//   "scenario_files"  optional object: name → path of a scenario file (relative to the grid file's
+//                     folder; docs/scenarios.md §Scenario files), its descriptor's name that name
 //   "datasets"        non-empty array of initial|medium|final|final+medium, no duplicates
 //   "algos"           non-empty array of algorithm names (algo_names()), no duplicates
 //   "seeds"           non-empty array of non-negative integers, no duplicates
@@ -53,6 +55,7 @@ struct Grid {
   std::string name;
   std::string description;
   std::vector<std::string> scenarios, datasets, algos;
+  std::map<std::string, std::string> scenario_files;  // name → absolute path of its descriptor
   std::vector<std::uint64_t> seeds;
   std::string profile = kDefaultProfile;  // the config files the cells start from (run_config.hpp)
   nlohmann::json config = nlohmann::json::object();
