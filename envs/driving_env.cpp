@@ -77,7 +77,7 @@ std::string write_route_file(const std::string& template_path, const ScenarioSet
 DrivingEnv::DrivingEnv(std::shared_ptr<const ScenarioDescriptor> scenario, const ScenarioSettings& settings)
     : scenario_(std::move(scenario)), settings_(settings) {
   validate_scenario_settings(*scenario_, settings_);
-  weights_ = driving::reward_weights(settings_.reward);
+  weights_ = scenario_reward_weights(*scenario_, settings_.reward);
   hook_ = make_scenario_hook(scenario_->hook, settings_);
   session_config_.step_length = scenario_->step_length;
 }
@@ -290,8 +290,8 @@ void DrivingEnv::observe(VecRef obs) const {
   const Road::Edge& edge = road_.edge(ego_.edge);
   obs[0] = clip1(2.0 * v / scenario_->speed_norm - 1.0);
   obs[1] = since_lane_change_ >= settings_.lane_change_interval ? 1.0f : -1.0f;
-  for (int side = kLeft; side <= kRight; ++side) {
-    float* o = obs.data() + 2 + 5 * side;
+  float* o = obs.data() + 2;
+  for (const int side : scenario_->neighbour_lanes) {
     const Neighbor& lead = ego_.leader[side];
     const Neighbor& follow = ego_.follower[side];
     o[0] = lead.present ? clip1(lead.gap / range) : 1.0f;
@@ -306,8 +306,9 @@ void DrivingEnv::observe(VecRef obs) const {
       o[4] = end == Road::kNoEnd ? 1.0f
                                  : clip1(2.0 * std::clamp((end - ego_.progress) / scenario_->lane_end_range, 0.0, 1.0) - 1.0);
     }
+    o += 5;
   }
-  write_features(obs.data() + kCommonObs);
+  write_features(obs.data() + features_at());
 }
 
 void DrivingEnv::resolve_features() {

@@ -11,9 +11,9 @@
 //   lane changing off (lane-change mode 256: only TraCI requests, refused only if they would
 //   overlap a vehicle). A request into a missing lane, before `lane_change_interval` decisions have
 //   passed since the last change, or refused by SUMO is a failed lane change: penalised, no effect.
-// Observation (every entry in [-1, 1]; see kCommonObs and docs/scenarios.md):
+// Observation (every entry in [-1, 1]; docs/scenarios.md):
 //   [0] ego speed 2v/v_norm − 1, [1] lane change allowed (+1) or still in its minimum interval (−1),
-//   then for the left, current and right lane (5 each): leader gap / R (missing +1), leader
+//   then for each of the descriptor's neighbour lanes (left, current, right by default; 5 each): leader gap / R (missing +1), leader
 //   relative speed / 15 m/s (missing +1), −follower gap / R (missing −1), follower relative
 //   speed / 15 m/s (missing −1), lane continues ahead (−1 missing, 2·min(1, d_end / R_end) − 1);
 //   then the descriptor's features.
@@ -42,7 +42,7 @@ class ScenarioHook;
 
 class DrivingEnv final : public Env {
  public:
-  static constexpr int kCommonObs = 17;
+  static constexpr int kCommonObs = 17;  // the entries before the features, with all three lanes
   static constexpr const char* kEgo = "ego";
 
   // Throws std::invalid_argument naming a setting out of range for the scenario.
@@ -50,7 +50,9 @@ class DrivingEnv final : public Env {
   ~DrivingEnv() override;
 
   std::string name() const override { return scenario_->name; }
-  int obs_dim() const override { return kCommonObs + static_cast<int>(scenario_->features.size()); }
+  int obs_dim() const override { return features_at() + static_cast<int>(scenario_->features.size()); }
+  // Where the descriptor's features start in the observation.
+  int features_at() const { return 2 + 5 * static_cast<int>(scenario_->neighbour_lanes.size()); }
   int act_dim() const override { return 2; }
   int horizon() const override { return settings_.horizon; }
   void reset(std::uint64_t seed, VecRef obs) override;

@@ -35,6 +35,21 @@ const std::vector<std::string>& feature_kind_names() {
   return names;
 }
 
+const std::vector<std::string>& neighbour_lane_names() {
+  static const std::vector<std::string> names = {"left", "current", "right"};
+  return names;
+}
+
+const std::vector<std::string>& reward_term_names() {
+  static const std::vector<std::string> names = {"offset", "gap", "failed_lane_change", "collision"};
+  return names;
+}
+
+driving::RewardWeights scenario_reward_weights(const ScenarioDescriptor& d, const std::string& name) {
+  const auto own = d.rewards.find(name);
+  return own != d.rewards.end() ? own->second : driving::reward_weights(name);
+}
+
 const std::vector<std::string>& scenario_hook_names() {
   static const std::vector<std::string> names = {kCutInObstaclesHook};
   return names;
@@ -261,7 +276,7 @@ ScenarioDescriptor read_descriptor(const std::string& path) {
   if (!doc.is_object()) Reader::fail("the descriptor", "must be a JSON object");
   const Reader r(file.parent_path());
   r.only(doc, "", {"description", "name", "display_name", "networks", "additional_files", "road", "ego",
-                   "step_length", "traffic", "observation", "action", "hook", "settings", "profiles"});
+                   "step_length", "traffic", "observation", "action", "hook", "rewards", "settings", "profiles"});
   ScenarioDescriptor d;
   d.file = file.string();
   d.name = r.text(doc, "name", "name");
@@ -302,11 +317,27 @@ ScenarioDescriptor read_descriptor(const std::string& path) {
   d.traffic_warmup_jitter = r.integer(traffic, "warmup_jitter", "traffic.warmup_jitter", 50, 0, 100000);
 
   const json& obs = r.object(doc, "observation", "observation",
-                             {"sensing_range", "lane_end_range", "speed_norm", "rel_speed_norm", "features"}, false);
+                             {"sensing_range", "lane_end_range", "speed_norm", "rel_speed_norm", "neighbours", "features"},
+                             false);
   d.sensing_range = r.number(obs, "sensing_range", "observation.sensing_range", 100.0, 0.0, 10000.0, true);
   d.lane_end_range = r.number(obs, "lane_end_range", "observation.lane_end_range", 200.0, 0.0, 100000.0, true);
   d.speed_norm = r.number(obs, "speed_norm", "observation.speed_norm", 35.0, 0.0, 100.0, true);
   d.rel_speed_norm = r.number(obs, "rel_speed_norm", "observation.rel_speed_norm", 15.0, 0.0, 100.0, true);
+  if (obs.contains("neighbours")) {
+    const json& list = obs.at("neighbours");
+    if (!list.is_array()) Reader::fail("observation.neighbours", "must be an array of left, current, right");
+    d.neighbour_lanes.clear();
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string where = "observation.neighbours[" + std::to_string(i) + "]";
+      const auto& names = neighbour_lane_names();
+      const auto it = list[i].is_string() ? std::find(names.begin(), names.end(), list[i].get<std::string>()) : names.end();
+      if (it == names.end()) Reader::fail(where, "unknown neighbour lane " + json_excerpt(list[i]) + " (expected one of " + listed(names) + ")");
+      const int side = static_cast<int>(it - names.begin());
+      if (!d.neighbour_lanes.empty() && side <= d.neighbour_lanes.back())
+        Reader::fail(where, "give each lane once, in the order left, current, right");
+      d.neighbour_lanes.push_back(side);
+    }
+  }
   if (obs.contains("features")) {
     const json& list = obs.at("features");
     if (!list.is_array()) Reader::fail("observation.features", "must be an array");
@@ -325,6 +356,25 @@ ScenarioDescriptor read_descriptor(const std::string& path) {
     const auto& hooks = scenario_hook_names();
     if (std::find(hooks.begin(), hooks.end(), d.hook) == hooks.end())
       Reader::fail("hook", "unknown hook '" + printable(d.hook) + "' (expected one of " + listed(hooks) + ")");
+  }
+
+  // Reward variants of its own: each term optional, defaulting to the `short` variant's weight.
+  const json& rewards = r.object(doc, "rewards", "rewards", {}, false);
+  for (const auto& [name, terms] : rewards.items()) {
+    const std::string where = "rewards." + name;
+    const auto& builtin = reward_variants();
+    if (std::find(builtin.begin(), builtin.end(), name) != builtin.end())
+      Reader::fail(where, "'" + name + "' is a built-in reward variant; give yours another name");
+    if (!terms.is_object()) Reader::fail(where, "must be an object of reward terms and their weights");
+    for (const auto& [term, weight] : terms.items())
+      if (std::find(reward_term_names().begin(), reward_term_names().end(), term) == reward_term_names().end())
+        Reader::fail(where + "." + term, "unknown reward term (expected one of " + listed(reward_term_names()) + ")");
+    driving::RewardWeights w = driving::reward_weights("short");
+    w.offset = r.number(terms, "offset", where + ".offset", w.offset, -10.0, 10.0);
+    w.gap = r.number(terms, "gap", where + ".gap", w.gap, 0.0, 100.0);
+    w.failed_lane_change = r.number(terms, "failed_lane_change", where + ".failed_lane_change", w.failed_lane_change, 0.0, 100.0);
+    w.collision = r.number(terms, "collision", where + ".collision", w.collision, 0.0, 10000.0);
+    d.rewards[name] = w;
   }
 
   // The network-independent checks first; then the files: the road's edges, the ego's route.

@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "envs/driving_reward.hpp"
 #include "envs/scenario_settings.hpp"
 
 namespace rapid {
@@ -69,11 +70,17 @@ struct ScenarioDescriptor {
   double lane_end_range = 200.0;  // R_end (m) of the "lane continues ahead" entries
   double speed_norm = 35.0;       // v_norm (m/s): also the ego's top speed under agent control
   double rel_speed_norm = 15.0;   // m/s
+  // The lanes whose leader and follower the observation holds, 5 entries each, in the order
+  // left, current, right: side 0 = left, 1 = the ego's lane, 2 = right (default all three).
+  std::vector<int> neighbour_lanes = {0, 1, 2};
   std::vector<FeatureSpec> features;
   // The action: a0·max_accel m/s²; a1 beyond ±lane_change_threshold asks for a lane change.
   double max_accel = 4.0;
   float lane_change_threshold = 1.0f / 3.0f;
   std::string hook;  // "" or one of scenario_hook_names()
+  // Reward variants of the scenario's own, by name, beside the built-in short and flow
+  // (envs/driving_reward.hpp): the `reward` setting may name one.
+  std::map<std::string, driving::RewardWeights> rewards;
   // What a setting left unset is (the settings a run's config does not give).
   ScenarioSettings defaults;
   bool has_ramp_inflow = false;  // a routes file has a RAMP_INFLOW flow: `ramp_inflow` applies
@@ -82,6 +89,15 @@ struct ScenarioDescriptor {
   // resolves its config (experiments/run/run_config.hpp).
   nlohmann::json profiles = nlohmann::json::object();
 };
+
+// The names of the observation's neighbour lanes (side 0, 1, 2).
+const std::vector<std::string>& neighbour_lane_names();
+
+// The terms of a reward variant a descriptor may weigh (driving::RewardWeights).
+const std::vector<std::string>& reward_term_names();
+
+// The weights of the reward variant `name` of scenario `d`: its own, or a built-in one.
+driving::RewardWeights scenario_reward_weights(const ScenarioDescriptor& d, const std::string& name);
 
 // The named C++ hooks a descriptor may ask for.
 const std::vector<std::string>& scenario_hook_names();

@@ -41,7 +41,9 @@ void validate_scenario_settings(const ScenarioDescriptor& d, const ScenarioSetti
   std::vector<std::string> networks;
   for (const auto& [variant, files] : d.networks) networks.push_back(variant);
   require(one_of(s.network, networks), "network: '" + s.network + "' is not one of " + list(networks));
-  require(one_of(s.reward, reward_variants()), "reward: '" + s.reward + "' is not one of " + list(reward_variants()));
+  std::vector<std::string> rewards = reward_variants();
+  for (const auto& [name, weights] : d.rewards) rewards.push_back(name);
+  require(one_of(s.reward, rewards), "reward: '" + s.reward + "' is not one of " + list(rewards));
   require(s.action_repeat >= 1 && s.action_repeat <= 50, "action_repeat: must be 1 to 50 SUMO steps");
   require(s.horizon >= 1 && s.horizon <= 100000, "horizon: must be 1 to 100000 decisions");
   require(s.lane_change_interval >= 0 && s.lane_change_interval <= 10000, "lane_change_interval: must be 0 to 10000");

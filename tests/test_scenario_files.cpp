@@ -126,6 +126,27 @@ TEST_F(ScenarioFile, AGridSweepsItByItsNameAndAnEditedFileMakesItsRecordsStale) 
   EXPECT_EQ(nlohmann::json::parse(status.text).at("counts").at("stale"), 2) << status.text;
 }
 
+TEST_F(ScenarioFile, ARewardVariantOfItsOwnWeighsTheTermsItSays) {
+  descriptor_["rewards"] = {{"gentle", {{"collision", 2}, {"offset", 0.3}}}};
+  descriptor_["settings"]["reward"] = "gentle";
+  const std::string trace = (dir_ / "gentle.trace.json").string();
+  const auto r = rapid_cli("rollout --scenario " + descriptor_file() + " --policy random --episodes 4 --seed 1 --record " + trace, true);
+  ASSERT_EQ(r.exit_code, 0) << r.text;
+  int collisions = 0, steps = 0;
+  const nlohmann::json recorded = nlohmann::json::parse(read_file(trace));
+  for (const auto& episode : recorded.at("episodes"))
+    for (const auto& d : episode.at("decisions")) {
+      ++steps;
+      if (d.at("terms").at("collision").get<double>() > 0.0) {
+        ++collisions;
+        EXPECT_DOUBLE_EQ(d.at("reward").get<double>(), -2.0);
+      } else {
+        EXPECT_LE(d.at("reward").get<double>(), 0.7 + 1e-6) << "r_v − offset is at most 1 − 0.3";
+      }
+    }
+  EXPECT_GT(collisions, 0) << "a random driver crashes within 4 episodes of " << steps << " decisions";
+}
+
 // One wrong thing in the descriptor, and what the one-line refusal must name.
 struct BadDescriptor {
   std::string what;
@@ -150,8 +171,14 @@ TEST_F(ScenarioFile, AWrongDescriptorIsRefusedNamingTheFieldBeforeAnythingIsWrit
        "observation.features[0].kind: unknown feature 'time_to_collision'"},
       {"an unknown reward", [](nlohmann::json& d, const fs::path&) { d["settings"]["reward"] = "comfort"; },
        "settings: reward: 'comfort' is not one of"},
+      {"an unknown reward term",
+       [](nlohmann::json& d, const fs::path&) { d["rewards"] = {{"mine", {{"jerk", 0.5}}}}; },
+       "rewards.mine.jerk: unknown reward term (expected one of offset, gap, failed_lane_change, collision)"},
       {"a negative horizon", [](nlohmann::json& d, const fs::path&) { d["settings"]["horizon"] = -5; },
        "settings: horizon: must be 1 to 100000"},
+      {"an unknown neighbour lane",
+       [](nlohmann::json& d, const fs::path&) { d["observation"]["neighbours"] = {"current", "behind"}; },
+       "observation.neighbours[1]: unknown neighbour lane \"behind\""},
       {"a misspelt field", [](nlohmann::json& d, const fs::path&) { d["obsevation"] = nlohmann::json::object(); },
        "obsevation: unknown field"},
       {"a hook nobody wrote", [](nlohmann::json& d, const fs::path&) { d["hook"] = "roadworks"; },
@@ -226,7 +253,8 @@ TEST(ShippedScenarioFiles, FlowMergeRunsFromItsDescriptorAlone) {
   const std::string file = std::string(RAPID_SOURCE_DIR) + "/scenarios/flow-merge/scenario.json";
   const auto r = rapid_cli("rollout --scenario " + file + " --policy sumo --episodes 2 --seed 0 --profile flow --json", true);
   ASSERT_EQ(r.exit_code, 0) << r.text;
-  for (const auto& e : nlohmann::json::parse(r.text).at("episodes")) {
+  const nlohmann::json rolled = nlohmann::json::parse(r.text);
+  for (const auto& e : rolled.at("episodes")) {
     EXPECT_FALSE(e.at("collision").get<bool>()) << r.text;
     EXPECT_LT(e.at("length").get<int>(), 150) << r.text;
     EXPECT_GT(e.at("return").get<double>(), 30.0) << r.text;

@@ -76,11 +76,11 @@ auto& holder(Config& config) {
   else return config;
 }
 
-bool driving(const std::string& scenario) { return is_driving_scenario(scenario); }
+bool driving_only(const std::string& scenario) { return is_driving_scenario(scenario); }
 // Keys of roads with an on-ramp flow, and of roads with cut-in obstacles (their descriptors say).
-bool merge_only(const std::string& scenario) { return driving(scenario) && scenario_descriptor(scenario)->has_ramp_inflow; }
+bool merge_only(const std::string& scenario) { return driving_only(scenario) && scenario_descriptor(scenario)->has_ramp_inflow; }
 bool cut_in_only(const std::string& scenario) {
-  return driving(scenario) && scenario_descriptor(scenario)->hook == kCutInObstaclesHook;
+  return driving_only(scenario) && scenario_descriptor(scenario)->hook == kCutInObstaclesHook;
 }
 
 // A row: the key's name, its field, the values it accepts and what it means.
@@ -105,32 +105,36 @@ ConfigKey optional_key(std::string name, T Holder::*field, Bounds bounds, T neut
   return k;
 }
 
-// A row whose value is one of a few names.
-ConfigKey choice_key(std::string name, std::string ScenarioSettings::*field, const std::vector<std::string>& choices,
-                     std::string doc) {
-  std::string list;
-  for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
-  ConfigKey k{name, ConfigPart::kScenario, "one of " + list, kAny, std::move(doc), driving, {}, {}, {}};
-  k.read = [name, field, choices, list](const nlohmann::json& v, RunConfig& config) {
-    if (!v.is_string() || std::find(choices.begin(), choices.end(), v.get<std::string>()) == choices.end())
-      reject(name, "expects one of " + list + ", got " + v.dump());
+// A row whose value names one of the things the scenario's descriptor defines (`names` of it: its
+// networks, its reward variants beside the built-in ones).
+ConfigKey descriptor_choice_key(std::string name, std::string ScenarioSettings::*field, std::string type,
+                                std::string doc, std::vector<std::string> (*names)(const ScenarioDescriptor&)) {
+  ConfigKey k{name, ConfigPart::kScenario, std::move(type), kAny, std::move(doc), driving_only, {}, {}, {}, {}};
+  k.read = [name, field](const nlohmann::json& v, RunConfig& config) {
+    if (!v.is_string() || v.get<std::string>().empty()) reject(name, "expects a name, got " + json_excerpt(v));
     config.scenario.*field = v.get<std::string>();
   };
   k.write = [field](const RunConfig& config) { return nlohmann::json(config.scenario.*field); };
+  k.check_for_scenario = [name, names](const nlohmann::json& v, const std::string& scenario) {
+    const std::vector<std::string> choices = names(*scenario_descriptor(scenario));
+    if (std::find(choices.begin(), choices.end(), v.get<std::string>()) != choices.end()) return;
+    std::string list;
+    for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
+    reject(name, "expects one of " + list + ", got " + json_excerpt(v));
+  };
   return k;
 }
 
-// A row whose value names one of the things the scenario's descriptor defines (its networks):
-// any non-empty string here, checked against the descriptor with the whole config.
-ConfigKey descriptor_choice_key(std::string name, std::string ScenarioSettings::*field, std::string type,
-                                std::string doc) {
-  ConfigKey k{name, ConfigPart::kScenario, std::move(type), kAny, std::move(doc), driving, {}, {}, {}};
-  k.read = [name, field](const nlohmann::json& v, RunConfig& config) {
-    if (!v.is_string() || v.get<std::string>().empty()) reject(name, "expects a name, got " + v.dump());
-    config.scenario.*field = v.get<std::string>();
-  };
-  k.write = [field](const RunConfig& config) { return nlohmann::json(config.scenario.*field); };
-  return k;
+std::vector<std::string> network_names(const ScenarioDescriptor& d) {
+  std::vector<std::string> names;
+  for (const auto& [variant, files] : d.networks) names.push_back(variant);
+  return names;
+}
+
+std::vector<std::string> reward_names(const ScenarioDescriptor& d) {
+  std::vector<std::string> names = reward_variants();
+  for (const auto& [variant, weights] : d.rewards) names.push_back(variant);
+  return names;
 }
 
 std::string number(double x) {
@@ -233,22 +237,25 @@ const std::vector<ConfigKey>& config_keys() {
           "capacity of the online replay buffer (a run stores at most `steps` transitions)"),
       descriptor_choice_key("network", &ScenarioSettings::network, "a network of the scenario",
                             "road geometry, one of the scenario file's networks: the built-ins' short road or "
-                            "their 4.5 km long one (docs/scenarios.md)"),
+                            "their 4.5 km long one (docs/scenarios.md)",
+                            network_names),
       key("action_repeat", &ScenarioSettings::action_repeat, {.lo = 1, .hi = 50},
-          "SUMO steps of 0.1 s per decision", driving),
-      key("horizon", &ScenarioSettings::horizon, {.lo = 1, .hi = 100000}, "decisions per episode", driving),
+          "SUMO steps of 0.1 s per decision", driving_only),
+      key("horizon", &ScenarioSettings::horizon, {.lo = 1, .hi = 100000}, "decisions per episode", driving_only),
       key("lane_change_interval", &ScenarioSettings::lane_change_interval, {.lo = 0, .hi = 10000},
-          "decisions the ego waits between two lane changes", driving),
+          "decisions the ego waits between two lane changes", driving_only),
       key("traffic_warmup", &ScenarioSettings::traffic_warmup, {.lo = 0, .hi = 100000},
-          "SUMO steps of traffic before the ego enters (plus a random 0 to 50)", driving),
+          "SUMO steps of traffic before the ego enters (plus a random 0 to 50)", driving_only),
       key("max_depart_delay", &ScenarioSettings::max_depart_delay, {.lo = -1, .hi = 3600},
-          "seconds a vehicle may queue to enter before SUMO drops it; -1: no limit", driving),
+          "seconds a vehicle may queue to enter before SUMO drops it; -1: no limit", driving_only),
       key("desired_speed", &ScenarioSettings::desired_speed, {.lo = 1, .hi = 35},
-          "v_des of the reward, m/s (SUMO's driver aims at it too)", driving),
-      choice_key("reward", &ScenarioSettings::reward, reward_variants(),
-                 "reward variant: per-step terms of docs/scenarios.md"),
+          "v_des of the reward, m/s (SUMO's driver aims at it too)", driving_only),
+      descriptor_choice_key("reward", &ScenarioSettings::reward, "a reward variant of the scenario",
+                            "reward variant: short, flow (per-step terms of docs/scenarios.md) or one the scenario "
+                            "file defines",
+                            reward_names),
       key("inflow", &ScenarioSettings::inflow, {.lo = 0, .hi = 3600},
-          "offered inflow per main-road lane, veh/h (Bernoulli, one draw per second)", driving),
+          "offered inflow per main-road lane, veh/h (Bernoulli, one draw per second)", driving_only),
       key("ramp_inflow", &ScenarioSettings::ramp_inflow, {.lo = 0, .hi = 3600}, "inflow on the on-ramp, veh/h",
           merge_only),
       key("obstacles", &ScenarioSettings::obstacles, {.lo = 0, .hi = 100}, "slow obstacle vehicles on the road",

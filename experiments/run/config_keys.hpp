@@ -78,6 +78,10 @@ struct ConfigKey {
   // changes no existing config hash. (Scenario keys may be left out too, and then hold the
   // scenario's built-in value: RunConfig::scenario.)
   std::function<void(RunConfig& config)> set_neutral;
+  // Null for most keys. For a key whose value names something the scenario's descriptor defines
+  // (its networks, its reward variants): throws std::invalid_argument("config key 'K' …") if the
+  // value names nothing `scenario` has.
+  std::function<void(const nlohmann::json& value, const std::string& scenario)> check_for_scenario;
 
   bool applies_to(const std::string& scenario) const { return for_scenario == nullptr || for_scenario(scenario); }
   bool optional() const { return static_cast<bool>(set_neutral); }

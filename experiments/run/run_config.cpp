@@ -119,7 +119,9 @@ void apply_overrides(nlohmann::json& config, const nlohmann::json& overrides, co
   for (const auto& [name, value] : overrides.items()) {
     try {
       RunConfig scratch;
-      key_of(name, scenario, keys).read(value, scratch);  // checks the value where it is given
+      const ConfigKey& key = key_of(name, scenario, keys);
+      key.read(value, scratch);  // checks the value where it is given
+      if (key.check_for_scenario) key.check_for_scenario(value, scenario);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(origin + ": " + e.what());
     }

@@ -3,8 +3,13 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
+#include "core/json_input.hpp"
 #include "core/rng.hpp"
+#include "envs/scenario_descriptor.hpp"
 #include "tests/envs/driving_test_util.hpp"
 
 namespace rapid {
@@ -18,6 +23,56 @@ TEST(Registry, KnowsTheThreeScenariosAndPendulum) {
     EXPECT_EQ(env->name(), name);
   }
   EXPECT_THROW(make_env("highway"), std::invalid_argument);
+}
+
+TEST(DrivingObservation, ADescriptorsNeighbourLanesChooseTheBlocksItHolds) {
+  // merge's own descriptor with only the ego's lane observed: its 2 + 5 + 1 entries are the
+  // built-in's 0-1, 7-11 (the current lane) and 17 (the feature), decision by decision.
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(network_dir()) / "merge";
+  nlohmann::json d = read_json_input((dir / "scenario.json").string());
+  for (auto& [variant, files] : d["networks"].items())
+    for (const char* key : {"net", "routes"}) files[key] = (dir / files[key].get<std::string>()).string();
+  d["additional_files"] = {(dir / d["additional_files"][0].get<std::string>()).lexically_normal().string()};
+  d["observation"]["neighbours"] = {"current"};
+  const fs::path file = fs::path(::testing::TempDir()) / ("merge-current-lane-" + std::to_string(::getpid()) + ".json");
+  std::ofstream(file) << d.dump();
+
+  auto full = make_env("merge");
+  auto current = make_env(file.string());
+  ASSERT_EQ(current->obs_dim(), 8);
+  Vec a(full->obs_dim()), b(current->obs_dim()), action(2);
+  Rng rng(3);
+  for (int episode = 0; episode < 2; ++episode) {
+    // One process has one simulation: step the two envs in turn, each from its own reset.
+    std::vector<Vec> seen_full, seen_current;
+    std::vector<Vec> actions;
+    full->reset(episode + 1, a);
+    seen_full.push_back(a);
+    for (bool done = false; !done && seen_full.size() < 200;) {
+      action << static_cast<float>(rng.uniform(-1, 1)), static_cast<float>(rng.uniform(-1, 1));
+      actions.push_back(action);
+      const StepResult r = full->step(action, a);
+      seen_full.push_back(a);
+      done = r.terminated || r.truncated;
+    }
+    current->reset(episode + 1, b);
+    seen_current.push_back(b);
+    for (const Vec& act : actions) {
+      current->step(act, b);
+      seen_current.push_back(b);
+    }
+    ASSERT_EQ(seen_full.size(), seen_current.size());
+    for (std::size_t t = 0; t < seen_full.size(); ++t) {
+      const Vec& f = seen_full[t];
+      const Vec& c = seen_current[t];
+      EXPECT_EQ(c[0], f[0]);
+      EXPECT_EQ(c[1], f[1]);
+      for (int k = 0; k < 5; ++k) EXPECT_EQ(c[2 + k], f[7 + k]) << "t " << t << " entry " << k;
+      EXPECT_EQ(c[7], f[17]) << "t " << t;
+    }
+  }
+  fs::remove(file);
 }
 
 TEST(DrivingObservation, EveryEntryFiniteAndInRangeUnderRandomActions) {
