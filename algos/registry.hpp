@@ -35,7 +35,7 @@ struct Algorithm {
   // The published values of its own keys (RLPD's UTD and ensemble, TD3's delay and noise), given
   // to a run whose config leaves the key out (experiments/run/job.hpp, with_recipe): the run's
   // record lists the keys they filled. A config that gives the key wins.
-  std::vector<std::pair<std::string, double>> recipe;
+  std::vector<std::pair<std::string, double>> recipe = {};
 
   bool reads(const std::string& key) const;
   // The window its buffers compute Batch::ret over: return_horizon for an algorithm that uses

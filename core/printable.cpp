@@ -20,4 +20,10 @@ std::string printable(std::string_view text) {
   return out;
 }
 
+std::string comma_joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
 }  // namespace rapid

@@ -4,10 +4,14 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace rapid {
 
 // `text` with every control byte (below 0x20, and 0x7f) written as \xNN; other bytes unchanged.
 std::string printable(std::string_view text);
+
+// "a, b, c": the names a message lists as the accepted choices.
+std::string comma_joined(const std::vector<std::string>& names);
 
 }  // namespace rapid

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/atomic_file.hpp"
 #include "core/hash.hpp"
 #include "core/json_input.hpp"
 #include "core/printable.hpp"
@@ -59,12 +60,6 @@ bool is_scenario_file(const std::string& name) { return name.size() > 5 && name.
 
 namespace {
 
-std::string listed(const std::vector<std::string>& names) {
-  std::string s;
-  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
-  return s;
-}
-
 // Reads one descriptor, every failure an std::invalid_argument "<field>: <problem>" (the caller
 // adds the file).
 class Reader {
@@ -89,7 +84,7 @@ class Reader {
   void only(const json& o, const std::string& where, const std::vector<std::string>& allowed) const {
     for (const auto& [k, v] : o.items())
       if (std::find(allowed.begin(), allowed.end(), k) == allowed.end())
-        fail(where.empty() ? k : where + "." + k, "unknown field (expected one of " + listed(allowed) + ")");
+        fail(where.empty() ? k : where + "." + k, "unknown field (expected one of " + comma_joined(allowed) + ")");
   }
 
   std::string text(const json& o, const std::string& key, const std::string& where, const std::string& fallback = {},
@@ -143,13 +138,6 @@ class Reader {
   fs::path dir_;
 };
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // The value of attribute `name` in one XML start tag's text, or "".
 std::string attribute(const std::string& tag, const std::string& name) {
   const std::regex re("\\s" + name + "\\s*=\\s*\"([^\"]*)\"");
@@ -175,7 +163,7 @@ std::vector<std::string> start_tags(const std::string& xml, const std::string& e
 // The ids of the network's normal edges and their lanes. A network with junction-internal lanes
 // (edges ':…') is refused: the env needs every vehicle on one of the road's edges.
 std::map<std::string, int> network_edges(const std::string& net_file, const std::string& where) {
-  const std::string xml = read_text(net_file);
+  const std::string xml = read_file(net_file);
   if (xml.find("function=\"internal\"") != std::string::npos)
     Reader::fail(where, net_file + " has junction-internal lanes: build it with netconvert --no-internal-links true");
   std::map<std::string, int> edges;
@@ -193,10 +181,10 @@ std::map<std::string, int> network_edges(const std::string& net_file, const std:
   return edges;
 }
 
-// route id → its edges, from a routes file.
-std::map<std::string, std::vector<std::string>> routes_of(const std::string& routes_file) {
+// route id → its edges, from a routes file's text.
+std::map<std::string, std::vector<std::string>> routes_of(const std::string& routes_xml) {
   std::map<std::string, std::vector<std::string>> routes;
-  for (const std::string& tag : start_tags(read_text(routes_file), "route")) {
+  for (const std::string& tag : start_tags(routes_xml, "route")) {
     std::istringstream edges(attribute(tag, "edges"));
     std::vector<std::string> list;
     for (std::string e; edges >> e;) list.push_back(e);
@@ -205,10 +193,11 @@ std::map<std::string, std::vector<std::string>> routes_of(const std::string& rou
   return routes;
 }
 
-std::set<std::string> vtype_ids(const std::vector<std::string>& files) {
+// The vehicle type ids defined in some SUMO files' texts.
+std::set<std::string> vtype_ids(const std::vector<std::string>& xml_texts) {
   std::set<std::string> ids;
-  for (const std::string& f : files)
-    for (const std::string& tag : start_tags(read_text(f), "vType")) ids.insert(attribute(tag, "id"));
+  for (const std::string& xml : xml_texts)
+    for (const std::string& tag : start_tags(xml, "vType")) ids.insert(attribute(tag, "id"));
   return ids;
 }
 
@@ -265,7 +254,7 @@ FeatureSpec read_feature(const Reader& r, const json& f, const std::string& wher
     spec.range_from = r.text(f, "range_from", where + ".range_from", "", false);
   } else {
     Reader::fail(where + ".kind", "unknown feature '" + printable(kind) + "' (expected one of " +
-                                      listed(feature_kind_names()) + ")");
+                                      comma_joined(feature_kind_names()) + ")");
   }
   return spec;
 }
@@ -331,7 +320,7 @@ ScenarioDescriptor read_descriptor(const std::string& path) {
       const std::string where = "observation.neighbours[" + std::to_string(i) + "]";
       const auto& names = neighbour_lane_names();
       const auto it = list[i].is_string() ? std::find(names.begin(), names.end(), list[i].get<std::string>()) : names.end();
-      if (it == names.end()) Reader::fail(where, "unknown neighbour lane " + json_excerpt(list[i]) + " (expected one of " + listed(names) + ")");
+      if (it == names.end()) Reader::fail(where, "unknown neighbour lane " + json_excerpt(list[i]) + " (expected one of " + comma_joined(names) + ")");
       const int side = static_cast<int>(it - names.begin());
       if (!d.neighbour_lanes.empty() && side <= d.neighbour_lanes.back())
         Reader::fail(where, "give each lane once, in the order left, current, right");
@@ -355,7 +344,7 @@ ScenarioDescriptor read_descriptor(const std::string& path) {
     d.hook = r.text(doc, "hook", "hook");
     const auto& hooks = scenario_hook_names();
     if (std::find(hooks.begin(), hooks.end(), d.hook) == hooks.end())
-      Reader::fail("hook", "unknown hook '" + printable(d.hook) + "' (expected one of " + listed(hooks) + ")");
+      Reader::fail("hook", "unknown hook '" + printable(d.hook) + "' (expected one of " + comma_joined(hooks) + ")");
   }
 
   // Reward variants of its own: each term optional, defaulting to the `short` variant's weight.
@@ -368,7 +357,7 @@ ScenarioDescriptor read_descriptor(const std::string& path) {
     if (!terms.is_object()) Reader::fail(where, "must be an object of reward terms and their weights");
     for (const auto& [term, weight] : terms.items())
       if (std::find(reward_term_names().begin(), reward_term_names().end(), term) == reward_term_names().end())
-        Reader::fail(where + "." + term, "unknown reward term (expected one of " + listed(reward_term_names()) + ")");
+        Reader::fail(where + "." + term, "unknown reward term (expected one of " + comma_joined(reward_term_names()) + ")");
     driving::RewardWeights w = driving::reward_weights("short");
     w.offset = r.number(terms, "offset", where + ".offset", w.offset, -10.0, 10.0);
     w.gap = r.number(terms, "gap", where + ".gap", w.gap, 0.0, 100.0);
@@ -378,6 +367,9 @@ ScenarioDescriptor read_descriptor(const std::string& path) {
   }
 
   // The network-independent checks first; then the files: the road's edges, the ego's route.
+  // Each routes file is read once, here; its text also serves the vehicle-type check below.
+  std::vector<std::string> vtype_texts;
+  for (const std::string& f : d.additional_files) vtype_texts.push_back(read_file(f));
   for (const auto& [variant, files] : d.networks) {
     const auto edges = network_edges(files.net, "networks." + variant + ".net");
     for (const std::string& e : d.road)
@@ -394,7 +386,8 @@ ScenarioDescriptor read_descriptor(const std::string& path) {
       if (f.kind == FeatureSpec::Kind::kDistanceToLaneEnd && f.lane >= edges.at(f.edge))
         Reader::fail(where + ".lane", "edge '" + f.edge + "' has " + std::to_string(edges.at(f.edge)) + " lanes");
     }
-    const auto routes = routes_of(files.routes);
+    const std::string& routes_xml = vtype_texts.emplace_back(read_file(files.routes));
+    const auto routes = routes_of(routes_xml);
     const auto route = routes.find(d.ego.route);
     if (route == routes.end()) Reader::fail("ego.route", "route '" + printable(d.ego.route) + "' is not in " + files.routes);
     if (route->second.empty()) Reader::fail("ego.route", "route '" + d.ego.route + "' has no edges");
@@ -409,11 +402,9 @@ ScenarioDescriptor read_descriptor(const std::string& path) {
     if (d.ego.depart_lane >= edges.at(d.ego.depart_edge))
       Reader::fail("ego.depart_lane", "the ego's first edge '" + d.ego.depart_edge + "' has " +
                                           std::to_string(edges.at(d.ego.depart_edge)) + " lanes");
-    if (read_text(files.routes).find("\"RAMP_INFLOW\"") != std::string::npos) d.has_ramp_inflow = true;
+    if (routes_xml.find("\"RAMP_INFLOW\"") != std::string::npos) d.has_ramp_inflow = true;
   }
-  std::vector<std::string> vtype_files = d.additional_files;
-  for (const auto& [variant, files] : d.networks) vtype_files.push_back(files.routes);
-  const std::set<std::string> vtypes = vtype_ids(vtype_files);
+  const std::set<std::string> vtypes = vtype_ids(vtype_texts);
   if (!vtypes.contains(d.ego.type))
     Reader::fail("ego.type", "vehicle type '" + printable(d.ego.type) + "' is in none of the routes and additional files");
   if (d.hook == kCutInObstaclesHook && !vtypes.contains(kObstacleType))
@@ -439,6 +430,18 @@ ScenarioDescriptor read_descriptor(const std::string& path) {
 }
 
 }  // namespace
+
+std::vector<std::string> scenario_network_names(const ScenarioDescriptor& d) {
+  std::vector<std::string> names;
+  for (const auto& [variant, files] : d.networks) names.push_back(variant);
+  return names;
+}
+
+std::vector<std::string> scenario_reward_names(const ScenarioDescriptor& d) {
+  std::vector<std::string> names = reward_variants();
+  for (const auto& [variant, weights] : d.rewards) names.push_back(variant);
+  return names;
+}
 
 ScenarioDescriptor read_scenario_descriptor(const std::string& path) {
   try {
@@ -479,10 +482,16 @@ bool is_registered_scenario(const std::string& name) {
 }
 
 std::string scenario_files_hash(const ScenarioDescriptor& d) {
-  std::string all = read_text(d.file);
-  for (const auto& [variant, files] : d.networks) all += "\n" + read_text(files.net) + "\n" + read_text(files.routes);
-  for (const std::string& f : d.additional_files) all += "\n" + read_text(f);
-  return fnv1a_hex(all);
+  // Once per descriptor file and process, like the descriptor itself (scenario_descriptor()): a
+  // sweep's state checks ask for it once per job.
+  static std::mutex mutex;
+  static std::map<std::string, std::string> hashes;
+  std::lock_guard<std::mutex> lock(mutex);
+  if (const auto it = hashes.find(d.file); it != hashes.end()) return it->second;
+  std::string all = read_file(d.file);
+  for (const auto& [variant, files] : d.networks) all += "\n" + read_file(files.net) + "\n" + read_file(files.routes);
+  for (const std::string& f : d.additional_files) all += "\n" + read_file(f);
+  return hashes[d.file] = fnv1a_hex(all);
 }
 
 std::shared_ptr<const ScenarioDescriptor> scenario_descriptor(const std::string& name) {

@@ -90,6 +90,11 @@ struct ScenarioDescriptor {
   nlohmann::json profiles = nlohmann::json::object();
 };
 
+// What a run's `network` setting may name in scenario `d`: its networks' variants.
+std::vector<std::string> scenario_network_names(const ScenarioDescriptor& d);
+// What a run's `reward` setting may name in scenario `d`: the built-in variants, then its own.
+std::vector<std::string> scenario_reward_names(const ScenarioDescriptor& d);
+
 // The names of the observation's neighbour lanes (side 0, 1, 2).
 const std::vector<std::string>& neighbour_lane_names();
 

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "core/bounds.hpp"
+
 namespace rapid {
 
 struct ScenarioSettings {
@@ -29,6 +31,22 @@ struct ScenarioSettings {
   int obstacles = 0;               // roads with the cut-in-obstacles hook: slow obstacle vehicles
   double obstacle_speed_min = 0.0, obstacle_speed_max = 0.0;  // with that hook, m/s
 };
+
+// The values each numeric setting accepts: validate_scenario_settings checks them, and the
+// config-key table declares them (experiments/run/config_keys.cpp), from this one place.
+namespace setting_range {
+inline constexpr Bounds kActionRepeat{.lo = 1, .hi = 50};          // SUMO steps
+inline constexpr Bounds kHorizon{.lo = 1, .hi = 100000};           // decisions
+inline constexpr Bounds kLaneChangeInterval{.lo = 0, .hi = 10000};  // decisions
+inline constexpr Bounds kTrafficWarmup{.lo = 0, .hi = 100000};     // SUMO steps
+inline constexpr Bounds kMaxDepartDelay{.lo = -1, .hi = 3600};     // s; negative: no limit
+inline constexpr Bounds kDesiredSpeed{.lo = 1, .hi = 35};          // m/s
+// One Bernoulli draw per lane per second: at most 3600 veh/h per lane.
+inline constexpr Bounds kInflow{.lo = 0, .hi = 3600};              // veh/h per lane
+inline constexpr Bounds kRampInflow{.lo = 0, .hi = 3600};          // veh/h
+inline constexpr Bounds kObstacles{.lo = 0, .hi = 100};
+inline constexpr Bounds kObstacleSpeed{.lo = 0, .hi = 35, .lo_open = true};  // m/s, min and max
+}  // namespace setting_range
 
 struct ScenarioDescriptor;
 

@@ -175,7 +175,7 @@ TEST_F(ScenarioFile, AWrongDescriptorIsRefusedNamingTheFieldBeforeAnythingIsWrit
        [](nlohmann::json& d, const fs::path&) { d["rewards"] = {{"mine", {{"jerk", 0.5}}}}; },
        "rewards.mine.jerk: unknown reward term (expected one of offset, gap, failed_lane_change, collision)"},
       {"a negative horizon", [](nlohmann::json& d, const fs::path&) { d["settings"]["horizon"] = -5; },
-       "settings: horizon: must be 1 to 100000"},
+       "settings: horizon: must be in [1, 100000]"},
       {"an unknown neighbour lane",
        [](nlohmann::json& d, const fs::path&) { d["observation"]["neighbours"] = {"current", "behind"}; },
        "observation.neighbours[1]: unknown neighbour lane \"behind\""},

@@ -9,6 +9,7 @@
 #include <type_traits>
 
 #include "core/json_input.hpp"
+#include "core/printable.hpp"
 #include "envs/scenario_descriptor.hpp"
 
 namespace rapid {
@@ -118,29 +119,9 @@ ConfigKey descriptor_choice_key(std::string name, std::string ScenarioSettings::
   k.check_for_scenario = [name, names](const nlohmann::json& v, const std::string& scenario) {
     const std::vector<std::string> choices = names(*scenario_descriptor(scenario));
     if (std::find(choices.begin(), choices.end(), v.get<std::string>()) != choices.end()) return;
-    std::string list;
-    for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
-    reject(name, "expects one of " + list + ", got " + json_excerpt(v));
+    reject(name, "expects one of " + comma_joined(choices) + ", got " + json_excerpt(v));
   };
   return k;
-}
-
-std::vector<std::string> network_names(const ScenarioDescriptor& d) {
-  std::vector<std::string> names;
-  for (const auto& [variant, files] : d.networks) names.push_back(variant);
-  return names;
-}
-
-std::vector<std::string> reward_names(const ScenarioDescriptor& d) {
-  std::vector<std::string> names = reward_variants();
-  for (const auto& [variant, weights] : d.rewards) names.push_back(variant);
-  return names;
-}
-
-std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", x);
-  return buf;
 }
 
 }  // namespace
@@ -152,22 +133,6 @@ const char* part_name(ConfigPart part) {
     case ConfigPart::kScenario: return "scenario";
   }
   return "?";
-}
-
-bool Bounds::contains(double x) const {
-  return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
-}
-
-std::string Bounds::text() const {
-  const bool no_lo = lo == -std::numeric_limits<double>::infinity();
-  const bool no_hi = hi == std::numeric_limits<double>::infinity();
-  if (no_lo && no_hi) return "";
-  if (no_hi) {
-    if (lo == 0) return lo_open ? "positive" : "≥ 0";
-    return (lo_open ? "above " : "at least ") + number(lo);
-  }
-  if (no_lo) return (hi_open ? "below " : "at most ") + number(hi);
-  return std::string("in ") + (lo_open ? "(" : "[") + number(lo) + ", " + number(hi) + (hi_open ? ")" : "]");
 }
 
 std::string ConfigKey::accepts() const {
@@ -238,31 +203,31 @@ const std::vector<ConfigKey>& config_keys() {
       descriptor_choice_key("network", &ScenarioSettings::network, "a network of the scenario",
                             "road geometry, one of the scenario file's networks: the built-ins' short road or "
                             "their 4.5 km long one (docs/scenarios.md)",
-                            network_names),
-      key("action_repeat", &ScenarioSettings::action_repeat, {.lo = 1, .hi = 50},
+                            scenario_network_names),
+      key("action_repeat", &ScenarioSettings::action_repeat, setting_range::kActionRepeat,
           "SUMO steps of 0.1 s per decision", driving_only),
-      key("horizon", &ScenarioSettings::horizon, {.lo = 1, .hi = 100000}, "decisions per episode", driving_only),
-      key("lane_change_interval", &ScenarioSettings::lane_change_interval, {.lo = 0, .hi = 10000},
+      key("horizon", &ScenarioSettings::horizon, setting_range::kHorizon, "decisions per episode", driving_only),
+      key("lane_change_interval", &ScenarioSettings::lane_change_interval, setting_range::kLaneChangeInterval,
           "decisions the ego waits between two lane changes", driving_only),
-      key("traffic_warmup", &ScenarioSettings::traffic_warmup, {.lo = 0, .hi = 100000},
+      key("traffic_warmup", &ScenarioSettings::traffic_warmup, setting_range::kTrafficWarmup,
           "SUMO steps of traffic before the ego enters (plus a random 0 to 50)", driving_only),
-      key("max_depart_delay", &ScenarioSettings::max_depart_delay, {.lo = -1, .hi = 3600},
+      key("max_depart_delay", &ScenarioSettings::max_depart_delay, setting_range::kMaxDepartDelay,
           "seconds a vehicle may queue to enter before SUMO drops it; -1: no limit", driving_only),
-      key("desired_speed", &ScenarioSettings::desired_speed, {.lo = 1, .hi = 35},
+      key("desired_speed", &ScenarioSettings::desired_speed, setting_range::kDesiredSpeed,
           "v_des of the reward, m/s (SUMO's driver aims at it too)", driving_only),
       descriptor_choice_key("reward", &ScenarioSettings::reward, "a reward variant of the scenario",
                             "reward variant: short, flow (per-step terms of docs/scenarios.md) or one the scenario "
                             "file defines",
-                            reward_names),
-      key("inflow", &ScenarioSettings::inflow, {.lo = 0, .hi = 3600},
+                            scenario_reward_names),
+      key("inflow", &ScenarioSettings::inflow, setting_range::kInflow,
           "offered inflow per main-road lane, veh/h (Bernoulli, one draw per second)", driving_only),
-      key("ramp_inflow", &ScenarioSettings::ramp_inflow, {.lo = 0, .hi = 3600}, "inflow on the on-ramp, veh/h",
+      key("ramp_inflow", &ScenarioSettings::ramp_inflow, setting_range::kRampInflow, "inflow on the on-ramp, veh/h",
           merge_only),
-      key("obstacles", &ScenarioSettings::obstacles, {.lo = 0, .hi = 100}, "slow obstacle vehicles on the road",
+      key("obstacles", &ScenarioSettings::obstacles, setting_range::kObstacles, "slow obstacle vehicles on the road",
           cut_in_only),
-      key("obstacle_speed_min", &ScenarioSettings::obstacle_speed_min, {.lo = 0, .hi = 35, .lo_open = true},
+      key("obstacle_speed_min", &ScenarioSettings::obstacle_speed_min, setting_range::kObstacleSpeed,
           "lowest obstacle speed, m/s (each obstacle draws its own)", cut_in_only),
-      key("obstacle_speed_max", &ScenarioSettings::obstacle_speed_max, {.lo = 0, .hi = 35, .lo_open = true},
+      key("obstacle_speed_max", &ScenarioSettings::obstacle_speed_max, setting_range::kObstacleSpeed,
           "highest obstacle speed, m/s", cut_in_only),
   };
   return keys;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "algos/agent_config.hpp"
+#include "core/bounds.hpp"
 #include "envs/scenario_settings.hpp"
 
 namespace rapid {
@@ -45,23 +46,11 @@ enum class ConfigPart {
 // "agent", "schedule", "scenario".
 const char* part_name(ConfigPart part);
 
-// The numbers a key accepts (for a list: each entry): an interval whose ends may be open,
-// closed or absent.
-struct Bounds {
-  double lo = -std::numeric_limits<double>::infinity();
-  double hi = std::numeric_limits<double>::infinity();
-  bool lo_open = false, hi_open = false;
-
-  bool contains(double x) const;
-  // "positive", "≥ 0", "at least 2", "in [0, 1)"; empty when every number is accepted.
-  std::string text() const;
-};
-
 struct ConfigKey {
   std::string name;
   ConfigPart part = ConfigPart::kSchedule;
   std::string type;  // "integer", "number", "list of integers" or "one of a, b"
-  Bounds bounds;
+  Bounds bounds;     // the numbers it accepts (for a list: each entry)
   std::string doc;   // one line: what the key means
   // The scenarios that have the key; null: every scenario. A key of one kind of scenario only
   // (a driving scenario's traffic, say) is missing from the others' configs and refused there.

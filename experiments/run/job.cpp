@@ -17,17 +17,24 @@ void check_dataset_fits(const std::string& algo, bool has_dataset) {
   if (!needs && has_dataset) throw std::invalid_argument("algorithm '" + algo + "' takes no dataset");
 }
 
+nlohmann::json recipe_fills(const nlohmann::json& config, const std::string& algo) {
+  nlohmann::json fills = nlohmann::json::object();
+  for (const auto& [key, value] : find_algorithm(algo).recipe) {
+    if (config.contains(key)) continue;
+    // A whole number goes in as an integer, which integer keys require and number keys accept.
+    if (value == std::floor(value)) fills[key] = static_cast<long>(value);
+    else fills[key] = value;
+  }
+  return fills;
+}
+
 nlohmann::json with_recipe(const nlohmann::json& config, const std::string& algo) {
   const Algorithm& a = find_algorithm(algo);
   nlohmann::json with = config;
   for (const ConfigKey& key : config_keys())
     if (key.optional() && !a.reads(key.name)) with.erase(key.name);
-  for (const auto& [key, value] : a.recipe) {
-    if (with.contains(key)) continue;
-    // A whole number goes in as an integer, which integer keys require and number keys accept.
-    if (value == std::floor(value)) with[key] = static_cast<long>(value);
-    else with[key] = value;
-  }
+  // The recipe's keys are the algorithm's own, so the erasure above left them as `config` has them.
+  with.update(recipe_fills(config, algo));
   return with;
 }
 

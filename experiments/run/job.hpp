@@ -44,6 +44,8 @@ void check_dataset_fits(const std::string& algo, bool has_dataset);
 // with its recipe (algos/registry.hpp) where it leaves one of its own keys out. The job's config
 // and hash stay the resolved config; the record lists what the recipe added (run_job.cpp).
 nlohmann::json with_recipe(const nlohmann::json& config, const std::string& algo);
+// The keys with_recipe adds to `config` for `algo`, with their values (what a record's "recipe" lists).
+nlohmann::json recipe_fills(const nlohmann::json& config, const std::string& algo);
 
 RunConfig check_config_fits(const std::string& algo, const nlohmann::json& config, const std::string& scenario);
 

@@ -36,7 +36,7 @@ std::string config_path(const std::string& scenario, const std::string& profile)
 void check_profile(const std::string& profile, const std::string& scenario) {
   const auto& names = config_profiles();
   if (std::find(names.begin(), names.end(), profile) == names.end())
-    throw std::invalid_argument("unknown profile '" + profile + "' (profiles: short, flow)");
+    throw std::invalid_argument("unknown profile '" + profile + "' (profiles: " + comma_joined(names) + ")");
   if (is_scenario_from_file(scenario)) {
     if (!scenario_descriptor(scenario)->profiles.contains(profile))
       throw std::invalid_argument("scenario file " + scenario + " has no '" + profile + "' profile (profiles." +

@@ -49,11 +49,7 @@ int run_job(const JobSpec& spec) {
   remove_leftovers(spec);
 
   nlohmann::json record = start_record(spec);
-  const nlohmann::json with = with_recipe(spec.config, spec.algo);
-  nlohmann::json filled = nlohmann::json::object();
-  for (const auto& [key, value] : algo.recipe)
-    if (!spec.config.contains(key)) filled[key] = with[key];
-  if (!filled.empty()) record["recipe"] = filled;
+  if (const nlohmann::json filled = recipe_fills(spec.config, spec.algo); !filled.empty()) record["recipe"] = filled;
   const auto t0 = Clock::now();
   TrainLog log;
   try {

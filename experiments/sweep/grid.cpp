@@ -32,12 +32,6 @@ constexpr std::size_t kMaxAxisValues = 1000;
 constexpr double kDefaultReferenceNoise = 0.1;
 const std::set<std::string> kReferenceKeys = {"seed", "transitions", "noise_std", "steps"};
 
-std::string joined(const std::vector<std::string>& names) {
-  std::string out;
-  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
-
 // How many points axis_points would list, without listing them (saturates instead of overflowing).
 std::size_t point_count(const Grid& grid, const std::string& scenario, const std::function<bool(const std::string&)>& reads) {
   std::size_t n = 1;
@@ -62,7 +56,7 @@ class GridChecker {
     for (const auto& [key, value] : object.items())
       if (!known.count(key)) {
         std::vector<std::string> names(known.begin(), known.end());
-        fail(where.empty() ? key : where + "." + key, "unknown key; expected one of " + joined(names));
+        fail(where.empty() ? key : where + "." + key, "unknown key; expected one of " + comma_joined(names));
       }
   }
 
@@ -91,7 +85,7 @@ class GridChecker {
       if (!axis[i].is_string()) fail(at, "expected a " + what + " name (string), got " + json_excerpt(axis[i]));
       const std::string s = axis[i].get<std::string>();
       if (std::find(allowed.begin(), allowed.end(), s) == allowed.end())
-        fail(at, "unknown " + what + " '" + s + "'; expected one of " + joined(allowed));
+        fail(at, "unknown " + what + " '" + s + "'; expected one of " + comma_joined(allowed));
       if (std::find(out.begin(), out.end(), s) != out.end()) fail(at, "duplicate " + what + " '" + s + "'");
       out.push_back(s);
     }
@@ -237,7 +231,7 @@ void check_overrides(const GridChecker& check, const Grid& grid) {
     std::vector<std::string> names = env_names();
     for (const auto& [name, file] : grid.scenario_files) names.push_back(name);
     if (std::find(names.begin(), names.end(), scenario) == names.end())
-      check.fail("scenario_config." + scenario, "unknown scenario '" + scenario + "'; expected one of " + joined(names));
+      check.fail("scenario_config." + scenario, "unknown scenario '" + scenario + "'; expected one of " + comma_joined(names));
     if (!overrides.is_object()) check.fail("scenario_config." + scenario, "expected an object, got " + json_excerpt(overrides));
   }
   std::vector<std::string> to_check = grid.scenarios;
@@ -410,7 +404,7 @@ Grid parse_grid(const json& doc, const std::string& label) {
     grid.profile = doc["profile"].get<std::string>();
     const auto& names = config_profiles();
     if (std::find(names.begin(), names.end(), grid.profile) == names.end())
-      check.fail("profile", "unknown profile '" + grid.profile + "'; expected one of " + joined(names));
+      check.fail("profile", "unknown profile '" + grid.profile + "'; expected one of " + comma_joined(names));
   }
   parse_axes(check, check.object_or_empty(doc, "axes"), grid);
   check.job_count(grid);

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "algos/registry.hpp"
+#include "core/printable.hpp"
 
 namespace rapid {
 
@@ -18,18 +19,12 @@ std::vector<std::string> split(const std::string& text, char sep) {
   return parts;
 }
 
-std::string listed(const std::vector<std::string>& names) {
-  std::string out;
-  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
-
 [[noreturn]] void fail(const std::string& problem) { throw std::invalid_argument("--only: " + problem); }
 
 void add_name(std::set<std::string>& into, const std::string& key, const std::string& value,
               const std::vector<std::string>& allowed) {
   if (std::find(allowed.begin(), allowed.end(), value) == allowed.end())
-    fail(key + " '" + value + "' is not in the grid; expected one of " + listed(allowed));
+    fail(key + " '" + value + "' is not in the grid; expected one of " + comma_joined(allowed));
   into.insert(value);
 }
 
@@ -89,7 +84,7 @@ Selection parse_selection(const std::string& text, const Grid& grid, const JobGr
                                                 [&](const GridAxis& a) { return a.key == key; });
                  axis != grid.axes.end()) {
         const nlohmann::json* v = axis_value(*axis, value);
-        if (v == nullptr) fail(key + " '" + value + "' is not a value of the grid's axis; expected one of " + listed(axis_labels(*axis)));
+        if (v == nullptr) fail(key + " '" + value + "' is not a value of the grid's axis; expected one of " + comma_joined(axis_labels(*axis)));
         s.axes[key].push_back(*v);
       } else {
         std::string keys = "scenario, dataset, algo, seed";

@@ -182,7 +182,10 @@ SlurmPlan plan_slurm_sweep(const SweepFolder& folder, const Selection& selection
     auto same = [&](const SlurmArray& a) { return a.stage == stage && a.scenario == job.scenario && a.after == after; };
     auto it = std::find_if(plan.arrays.begin(), plan.arrays.end(), same);
     if (it == plan.arrays.end()) {
-      plan.arrays.push_back({.stage = stage, .scenario = job.scenario, .after = after});
+      SlurmArray& array = plan.arrays.emplace_back();
+      array.stage = stage;
+      array.scenario = job.scenario;
+      array.after = after;
       it = std::prev(plan.arrays.end());
     }
     array_of[i] = static_cast<std::size_t>(it - plan.arrays.begin());

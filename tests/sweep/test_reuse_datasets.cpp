@@ -39,14 +39,27 @@ class ReuseDatasets : public ::testing::Test {
     write_json(grid_path, pendulum_grid("reuse", {"rapid-rl", "ddpg"}, {0}, 600));
     provide_datasets(from, grid_path);
   }
+  // `rapid sweep` of the grid into `sweep`, starting from `reuse`.
+  Result sweep_reusing(const fs::path& reuse) {
+    return run_rapid("sweep " + grid_path.string() + " --jobs 1 --no-summary --out " + sweep.string() +
+                     " --reuse-datasets " + reuse.string());
+  }
+  // A real sweep of the grid (a trained reference and its datasets) into `built`, then a folder of
+  // its reference agents alone.
+  fs::path built_references() {
+    EXPECT_EQ(run_rapid("sweep " + grid_path.string() + " --jobs 2 --no-summary --out " + built.string()).exit_code, 0);
+    const fs::path refs = dir.path() / "refs";
+    copy_references(built, refs);
+    return refs;
+  }
   testing::ScratchDir dir;
+  const fs::path built = dir.path() / "built";
   const fs::path grid_path = dir.path() / "reuse.json", from = dir.path() / "from", sweep = dir.path() / "sweep";
 };
 
 TEST_F(ReuseDatasets, ASweepWithTheSameReferenceTrainsNoReferenceAndFromIsOnlyRead) {
   const std::string dataset = bytes_of(from / "datasets/pendulum/initial.h5");
-  const Result r = run_rapid("sweep " + grid_path.string() + " --jobs 1 --no-summary --out " + sweep.string() +
-                             " --reuse-datasets " + from.string());
+  const Result r = sweep_reusing(from);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("reused the references and datasets of 1 of 1 scenario builds from " + from.string()),
             std::string::npos)
@@ -77,14 +90,10 @@ TEST_F(ReuseDatasets, DatasetsBuiltForOtherReferenceSettingsAreNotTaken) {
 // collected here from them, identical to FROM's own; --check-references trains them instead and
 // checks them against FROM's byte for byte.
 TEST_F(ReuseDatasets, AFolderOfReferencesAloneGivesItsAgentsAndTheDatasetsAreCollectedHere) {
-  const fs::path built = dir.path() / "built";  // a real sweep: a trained reference and its datasets
-  ASSERT_EQ(run_rapid("sweep " + grid_path.string() + " --jobs 2 --no-summary --out " + built.string()).exit_code, 0);
+  const fs::path refs = built_references();
   const Dataset original = read_dataset((built / "datasets/pendulum/initial.h5").string());
-  const fs::path refs = dir.path() / "refs";
-  copy_references(built, refs);
 
-  const Result r = run_rapid("sweep " + grid_path.string() + " --jobs 1 --no-summary --out " + sweep.string() +
-                             " --reuse-datasets " + refs.string());
+  const Result r = sweep_reusing(refs);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("reused the references and datasets of 0 of 1 scenario builds from " + refs.string() +
                           "; the references alone of 1 (their datasets are collected here)"),
@@ -126,15 +135,11 @@ TEST_F(ReuseDatasets, AFolderOfReferencesAloneGivesItsAgentsAndTheDatasetsAreCol
 // A reference whose record says ok but whose checkpoints are gone (a folder committed without its
 // *.ckpt files) is not a reference: it is trained here, and `rapid status` says why in FROM.
 TEST_F(ReuseDatasets, AReferenceWithoutItsCheckpointsIsTrainedHereNotTaken) {
-  const fs::path built = dir.path() / "built";
-  ASSERT_EQ(run_rapid("sweep " + grid_path.string() + " --jobs 2 --no-summary --out " + built.string()).exit_code, 0);
-  const fs::path refs = dir.path() / "refs";
-  copy_references(built, refs);
+  const fs::path refs = built_references();
   for (const auto& entry : fs::directory_iterator(refs / "datasets/pendulum/reference"))
     if (entry.path().extension() == ".ckpt") fs::remove(entry.path());
 
-  const Result r = run_rapid("sweep " + grid_path.string() + " --jobs 1 --no-summary --out " + sweep.string() +
-                             " --reuse-datasets " + refs.string());
+  const Result r = sweep_reusing(refs);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("reused the references and datasets of 0 of 1 scenario builds from " + refs.string() +
                           "; 1 not done there for this grid's reference settings, built here"),
@@ -190,8 +195,7 @@ TEST(DatasetStageInputs, AreTheScenariosOwnReferenceSettings) {
 
 TEST_F(ReuseDatasets, AFolderThatIsNotASweepIsRefusedInOneLine) {
   fs::create_directories(dir.path() / "plain");
-  const Result r = run_rapid("sweep " + grid_path.string() + " --jobs 1 --no-summary --out " + sweep.string() +
-                             " --reuse-datasets " + (dir.path() / "plain").string());
+  const Result r = sweep_reusing(dir.path() / "plain");
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("rapid: error: --reuse-datasets: '" + (dir.path() / "plain").string() +
                           "' is not a sweep folder (no grid.json)"),
