@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "algos/registry.hpp"
+#include "experiments/report/adaptive_seeds.hpp"
 #include "experiments/report/format.hpp"
 
 namespace rapid {
@@ -121,6 +122,7 @@ std::string decided_claims_markdown(const Summary& s) {
       if (!means.empty()) out << "\n" << means;
     }
   }
+  out << adaptive_seeds_markdown(s.adaptive_seeds);
   return out.str();
 }
 

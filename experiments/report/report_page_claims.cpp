@@ -1,6 +1,7 @@
 // report.html's claims: the decided verdicts (docs/decisions.md) where summary.json has them,
 // then the paper's claims with the point-mean verdict, the exact rule checked, the reason and the
 // numbers behind it, as claims.md has them.
+#include "experiments/report/adaptive_seeds.hpp"
 #include "experiments/report/format.hpp"
 #include "experiments/report/html_text.hpp"
 #include "experiments/report/report_page_sections.hpp"
@@ -59,6 +60,38 @@ std::string decided(const nlohmann::json& summary) {
   return html + "</tbody></table></details>\n";
 }
 
+// A --decide folder's looks: the verdicts at each, the seeds and cells it added, and the runs
+// spent against the fixed designs (summary.json's "adaptive_seeds").
+std::string adaptive(const nlohmann::json& summary) {
+  if (!summary.contains("adaptive_seeds") || !summary["adaptive_seeds"].is_object()) return "";
+  const nlohmann::json& a = summary["adaptive_seeds"];
+  std::string html = "<h3>Adaptive seeds</h3>\n<p>The grid's " + std::to_string(a.value("initial_seeds", 0)) +
+                     " seeds, then blocks of " + std::to_string(a.value("block", 0)) +
+                     " seeds for the cells of undecided comparisons only, up to " +
+                     std::to_string(a.value("max_seeds", 0)) + " per cell (<code>rapid sweep --decide</code>).</p>\n"
+                     "<table class=\"numbers\" id=\"adaptive-looks\"><thead><tr><th>Look</th><th>Verdicts</th>"
+                     "<th>Seeds added</th><th>Cells</th></tr></thead><tbody>\n";
+  for (const nlohmann::json& look : a.value("looks", nlohmann::json::array())) {
+    const nlohmann::json added = look.value("added_seeds", nlohmann::json::array());
+    const std::size_t cells = look.value("cells", nlohmann::json::array()).size();
+    html += "<tr><td>" + std::to_string(look.value("look", 0)) + "</td><td>" + html_escape(look_verdicts_text(look)) +
+            "</td><td>" + (added.empty() ? std::string("—") : added.front().dump() + "-" + added.back().dump()) +
+            "</td><td>" +
+            (cells == 0 ? std::string("—")
+                        : "<details><summary>" + std::to_string(cells) + "</summary>" +
+                              html_escape(look_cells_text(look)) +
+                                 "</details>") +
+            "</td></tr>\n";
+  }
+  const nlohmann::json fixed = a.value("fixed_design_runs", nlohmann::json::object());
+  const nlohmann::json stopped = a.value("stopped", nlohmann::json());
+  return html + "</tbody></table>\n<p>" +
+         html_escape(stopped.is_string() ? "Stopped: " + stopped.get<std::string>() + "." : "The looks have not stopped.") +
+         " Runs: " + std::to_string(a.value("runs", 0L)) + " (" + short_number(a.value("run_core_hours", 0.0)) +
+         " core-hours), against " + std::to_string(fixed.value("initial", 0L)) + " for the fixed design at the grid's seeds and " +
+         std::to_string(fixed.value("max", 0L)) + " at the maximum.</p>\n";
+}
+
 std::string claim_numbers(const nlohmann::json& c) {
   const nlohmann::json header = c.value("header", nlohmann::json::array());
   if (header.empty()) return "";
@@ -95,7 +128,8 @@ std::string point_mean(const nlohmann::json& summary) {
 }  // namespace
 
 std::string claims_section(const ReportFolder& folder) {
-  return "<section id=\"claims\"><h2>The paper's claims</h2>\n" + decided(folder.summary) + point_mean(folder.summary) +
+  return "<section id=\"claims\"><h2>The paper's claims</h2>\n" + decided(folder.summary) + adaptive(folder.summary) +
+         point_mean(folder.summary) +
          "</section>\n";
 }
 

@@ -5,6 +5,7 @@
 
 #include "algos/registry.hpp"
 #include "core/hash.hpp"
+#include "experiments/report/adaptive_seeds.hpp"
 #include "experiments/report/cell_records.hpp"
 #include "experiments/report/claims.hpp"
 #include "experiments/report/decisions.hpp"
@@ -278,10 +279,13 @@ Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptio
   if (options.claims) {
     s.claims = check_claims(s);
     if (auto settings = load_decision_settings(s.grid.profile)) {
-      // A folder that `rapid sweep --decide` has looked at decides at α / (its largest number of looks).
+      // A folder that `rapid sweep --decide` has looked at decides at α / (its largest number of looks),
+      // and its reports say what the looks spent.
       if (const auto plan = read_json_file(folder.path(sweep_files::kDecide));
-          plan && plan->contains("looks_max") && (*plan)["looks_max"].is_number_integer() && (*plan)["looks_max"] > 0)
+          plan && plan->contains("looks_max") && (*plan)["looks_max"].is_number_integer() && (*plan)["looks_max"] > 0) {
         settings->looks = (*plan)["looks_max"].get<int>();
+        s.adaptive_seeds = adaptive_seeds_summary(*plan, s.cells, s.provenance);
+      }
       s.decisions = decide_claims(s, *settings);
     }
   }

@@ -197,6 +197,7 @@ struct Summary {
   std::vector<DatasetSummary> datasets;
   std::vector<ClaimResult> claims;
   std::optional<Decisions> decisions;  // where the profile has a decision rule
+  nlohmann::json adaptive_seeds;       // a --decide folder's looks and runs (adaptive_seeds.hpp); else null
   std::vector<std::string> warnings;  // printed by `rapid summarize`
   RunProvenance provenance;           // of the ok records
 

@@ -180,6 +180,7 @@ nlohmann::json summary_to_json(const Summary& s) {
   j["claims"] = nlohmann::json::array();
   for (const ClaimResult& c : s.claims) j["claims"].push_back(claim_json(c));
   if (s.decisions) j["decisions"] = decisions_json(*s.decisions);  // absent without a decision rule
+  if (!s.adaptive_seeds.is_null()) j["adaptive_seeds"] = s.adaptive_seeds;  // absent outside --decide folders
   if (!s.provenance.empty()) j["provenance"] = s.provenance.to_json();  // absent without an ok record
   return j;
 }

@@ -40,6 +40,22 @@ TEST(Decide, AddsBlocksOfSeedsToUndecidedCellsAndResumesWithoutRerunning) {
   const nlohmann::json summary = read_json(sweep / "summary.json");
   EXPECT_EQ(summary["decisions"]["looks"], 3);
   EXPECT_DOUBLE_EQ(summary["decisions"]["alpha_per_look"].get<double>(), 0.05 / 3);
+  // The reports say what the looks spent: every cell's ok seeds, against the fixed designs.
+  const nlohmann::json& spent = summary["adaptive_seeds"];
+  long runs = 0;
+  for (const nlohmann::json& cell : summary["cells"]) runs += cell["n_ok"].get<long>();
+  EXPECT_EQ(spent["runs"], runs);
+  EXPECT_EQ(spent["looks"], read_json(sweep / "decide.json")["looks"]);
+  EXPECT_EQ(spent["fixed_design_runs"], nlohmann::json({{"initial", 4}, {"max", 8}}));  // 2 cells × 2 and × 4 seeds
+  EXPECT_EQ(spent["stopped"], plan["stopped"]);
+  std::ifstream claims_in(sweep / "claims.md");
+  const std::string claims((std::istreambuf_iterator<char>(claims_in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(claims.find("## Adaptive seeds (`rapid sweep --decide`)"), std::string::npos) << claims;
+  EXPECT_NE(claims.find("| 0 | C1 "), std::string::npos) << claims;
+  EXPECT_NE(claims.find("Compute: " + std::to_string(runs) + " runs ("), std::string::npos) << claims;
+  EXPECT_NE(claims.find("against 4 runs for the fixed design at the grid's 2 seeds and 8 at the maximum"),
+            std::string::npos)
+      << claims;
 
   // Again: the same looks from the same records, no job run.
   const Result again = run_rapid(cmd);

@@ -1,0 +1,31 @@
+// What a `rapid sweep --decide` folder spent and why (docs/decisions.md §Adaptive seeds): its
+// looks as decide.json records them (the verdicts at each look, the seeds added and the cells that
+// got them, why the looks stopped), how many seeds each cell has, and its runs against the fixed
+// designs at the grid's own seeds and at the maximum. summary.json's "adaptive_seeds"; claims.md
+// and report.html render it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "experiments/report/run_provenance.hpp"
+#include "experiments/report/summary.hpp"
+
+namespace rapid {
+
+// "adaptive_seeds" of summary.json from the folder's decide.json (`plan`) and its cells; null when
+// `plan` is not a decide plan with looks.
+nlohmann::json adaptive_seeds_summary(const nlohmann::json& plan, const std::vector<CellSummary>& cells,
+                                      const RunProvenance& provenance);
+
+// One look of "adaptive_seeds": its verdicts ("C1 UNDECIDED, C2 …") and the cells it grew
+// ("merge/initial/rapid-rl, …"), as both reports list them.
+std::string look_verdicts_text(const nlohmann::json& look);
+std::string look_cells_text(const nlohmann::json& look);
+
+// claims.md's "Adaptive seeds" section of a summary's "adaptive_seeds".
+std::string adaptive_seeds_markdown(const nlohmann::json& adaptive);
+
+}  // namespace rapid
