@@ -123,7 +123,10 @@ TEST_F(SmallSweep, OnlyWithForceRerunsExactlyTheSelectedJobs) {
 }
 
 TEST_F(SmallSweep, AGridChangeRerunsExactlyTheJobsItTouches) {
-  ASSERT_EQ(sweep().exit_code, 0);
+  // Every sweep's output goes with its failure: this test once failed under load with exit 1 and
+  // no word of why.
+  const Result initial = sweep();
+  ASSERT_EQ(initial.exit_code, 0) << initial.output;
   const auto first = record_identities(sweep_);
 
   // A new seed: only its cells run.
@@ -140,7 +143,8 @@ TEST_F(SmallSweep, AGridChangeRerunsExactlyTheJobsItTouches) {
   grid_["max_retries"] = 1;
   grid_["description"] = "same jobs";
   write_grid();
-  ASSERT_EQ(sweep().exit_code, 0);
+  const Result same_jobs = sweep();
+  ASSERT_EQ(same_jobs.exit_code, 0) << same_jobs.output;
   EXPECT_TRUE(jobs_ran(sweep_).empty());
 
   // A config value: every cell of the scenario is stale. Only ddpg is run here (the prior
