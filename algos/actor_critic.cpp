@@ -3,9 +3,24 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace rapid {
+
+namespace {
+// The backbone's critic pieces as the config gives them: no default stands in for a missing value
+// (agent_config.hpp), so a config that left them at 0 is refused here, naming the key.
+const AgentConfig& with_critics_checked(const AgentConfig& c) {
+  if (c.critic_ensemble < 1)
+    throw std::invalid_argument("config key 'critic_ensemble' must be at least 1, got " + std::to_string(c.critic_ensemble));
+  if (c.critic_subset < 1 || c.critic_subset > c.critic_ensemble)
+    throw std::invalid_argument("config key 'critic_subset' must be 1 to critic_ensemble (" +
+                                std::to_string(c.critic_ensemble) + "), got " + std::to_string(c.critic_subset));
+  return c;
+}
+}  // namespace
 
 ActorCritic::ActorCritic(int obs_dim, int act_dim, const AgentConfig& config, std::uint64_t init_seed)
     : ActorCritic(obs_dim, act_dim, config, init_seed,
@@ -13,11 +28,11 @@ ActorCritic::ActorCritic(int obs_dim, int act_dim, const AgentConfig& config, st
 
 ActorCritic::ActorCritic(int obs_dim, int act_dim, const AgentConfig& config, std::uint64_t init_seed, Mlp actor,
                          Mlp acting)
-    : config_(config),
+    : config_(with_critics_checked(config)),
       obs_dim_(obs_dim),
       act_dim_(act_dim),
       actor_(std::move(actor)),
-      critics_(obs_dim + act_dim, config.critic_hidden, std::max(config.critic_ensemble, 1), config.critic_lr),
+      critics_(obs_dim + act_dim, config.critic_hidden, config.critic_ensemble, config.critic_lr),
       update_rng_(stream_seed(init_seed, Stream::kUpdate)) {
   Rng rng(init_seed);
   actor_.init(rng);
@@ -71,7 +86,7 @@ const Mat& ActorCritic::critic_input(const Mat& obs, const Mat& act) {
 }
 
 const RowVec& ActorCritic::target_q(const Mat& next_obs, const Mat& next_act) {
-  critics_target_.draw_subset(update_rng_, std::max(config_.critic_subset, 1), target_subset_);
+  critics_target_.draw_subset(update_rng_, config_.critic_subset, target_subset_);
   const Mat& next_q = critics_target_.forward(critic_input(next_obs, next_act), target_subset_);
   next_q_ = next_q.colwise().minCoeff();
   return next_q_;

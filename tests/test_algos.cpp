@@ -6,6 +6,8 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <tuple>
 
 #include "algos/registry.hpp"
@@ -366,6 +368,26 @@ TEST(CriticTarget, MasksTerminalsOnly) {
   EXPECT_NEAR(y[5], batch.rew[5] + gamma * next_q(0, 5), 1e-6);
   EXPECT_NEAR(y[0], batch.rew[0] + gamma * next_q(0, 0), 1e-6);
   EXPECT_NE(next_q(0, 5), 0.0f);
+}
+
+// No default stands in for a critic setting a config left out (algos/agent_config.hpp): an
+// ensemble of 0 or a target subset outside 1..N is refused at construction, naming the key.
+TEST(ActorCritic, RefusesAnEmptyEnsembleOrASubsetOutsideIt) {
+  const auto message = [](int ensemble, int subset) {
+    AgentConfig c = small_config();
+    c.critic_ensemble = ensemble;
+    c.critic_subset = subset;
+    try {
+      ActorCritic agent(kObs, kAct, c, 1);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message(0, 1), "config key 'critic_ensemble' must be at least 1, got 0");
+  EXPECT_EQ(message(2, 0), "config key 'critic_subset' must be 1 to critic_ensemble (2), got 0");
+  EXPECT_EQ(message(2, 3), "config key 'critic_subset' must be 1 to critic_ensemble (2), got 3");
+  EXPECT_EQ(message(2, 2), "no error");
 }
 
 TEST(ActorCritic, UpdateReducesCriticLossOnAFixedBatch) {
