@@ -9,15 +9,17 @@
 
 namespace rapid {
 
-namespace {
-// The backbone's critic pieces as the config gives them: no default stands in for a missing value
-// (agent_config.hpp), so a config that left them at 0 is refused here, naming the key.
-const AgentConfig& with_critics_checked(const AgentConfig& c) {
+void check_critic_settings(const AgentConfig& c) {
   if (c.critic_ensemble < 1)
     throw std::invalid_argument("config key 'critic_ensemble' must be at least 1, got " + std::to_string(c.critic_ensemble));
   if (c.critic_subset < 1 || c.critic_subset > c.critic_ensemble)
     throw std::invalid_argument("config key 'critic_subset' must be 1 to critic_ensemble (" +
                                 std::to_string(c.critic_ensemble) + "), got " + std::to_string(c.critic_subset));
+}
+
+namespace {
+const AgentConfig& with_critics_checked(const AgentConfig& c) {
+  check_critic_settings(c);
   return c;
 }
 }  // namespace

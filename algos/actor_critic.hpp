@@ -33,6 +33,12 @@
 
 namespace rapid {
 
+// The backbone's critic pieces as a config gives them: no default stands in for a missing value
+// (agent_config.hpp), so critic_ensemble below 1, or critic_subset outside 1..critic_ensemble, is
+// refused with std::invalid_argument naming the key. ActorCritic's constructor and Algorithm::check
+// (the config-time check) both ask this.
+void check_critic_settings(const AgentConfig& config);
+
 // What one gradient step measured; the unweighted BC losses feed Figure 3(b).
 struct UpdateStats {
   float critic_loss = 0.0f;

@@ -64,10 +64,11 @@ int Algorithm::return_window(const AgentConfig& config) const {
 
 void Algorithm::check(const AgentConfig& config) const {
   return_window(config);
-  if (config.critic_subset > config.critic_ensemble)
-    throw std::invalid_argument("algorithm '" + name + "': config key 'critic_subset' (" +
-                                std::to_string(config.critic_subset) + ") exceeds 'critic_ensemble' (" +
-                                std::to_string(config.critic_ensemble) + ")");
+  try {
+    check_critic_settings(config);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("algorithm '" + name + "': " + e.what());
+  }
 }
 
 bool is_algorithm_key(const std::string& key) {
@@ -85,9 +86,7 @@ std::vector<std::string> algo_names() {
 const Algorithm& find_algorithm(const std::string& name) {
   for (const Algorithm& a : algorithms())
     if (a.name == name) return a;
-  std::string known;
-  for (const Algorithm& a : algorithms()) known += (known.empty() ? "" : ", ") + a.name;
-  throw std::invalid_argument("unknown algorithm '" + printable(name) + "'; expected one of " + known);
+  throw std::invalid_argument("unknown algorithm '" + printable(name) + "'; expected one of " + comma_joined(algo_names()));
 }
 
 }  // namespace rapid

@@ -291,7 +291,7 @@ TEST(AlgorithmConfig, TheRecipeFillsOwnKeysAndOtherAlgorithmsKeysAreDropped) {
     check_config_fits("rlpd-sac", bad, "pendulum");
     FAIL();
   } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()), "algorithm 'rlpd-sac': config key 'critic_subset' (3) exceeds 'critic_ensemble' (2)");
+    EXPECT_EQ(std::string(e.what()), "algorithm 'rlpd-sac': config key 'critic_subset' must be 1 to critic_ensemble (2), got 3");
   }
   EXPECT_NO_THROW(check_config_fits("ddpg", bad, "pendulum"));  // not its keys
 }

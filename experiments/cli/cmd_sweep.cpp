@@ -74,13 +74,26 @@ double parse_job_timeout(const std::string& text) {
 // the same validated folder and job graph and submits job arrays instead (sweep/slurm_backend.hpp).
 const std::vector<std::string> kBackends = {"local", "slurm"};
 
-// Writes the resolved grid into the folder, saying what changed since the last sweep there.
-void update_grid_file(const SweepFolder& folder, std::ostream& notes) {
+// Whether `before` is `grid` with more seeds after its own: what --decide's looks leave in grid.json
+// (cli/sweep_decide.hpp). A --decide of the same grid resumes those looks, so they are no change.
+bool seeds_grown_by_looks(const nlohmann::json& before, const nlohmann::json& grid) {
+  if (!before.is_object() || !before.contains("seeds") || !before["seeds"].is_array()) return false;
+  nlohmann::json own = before;
+  const nlohmann::json& seeds = grid["seeds"];
+  if (before["seeds"].size() < seeds.size()) return false;
+  own["seeds"] = nlohmann::json(before["seeds"].begin(), before["seeds"].begin() + static_cast<long>(seeds.size()));
+  return own == grid;
+}
+
+// Writes the resolved grid into the folder, saying what changed since the last sweep there. With
+// --decide (`decide`), seeds its earlier looks added are kept and not reported as a change.
+void update_grid_file(const SweepFolder& folder, bool decide, std::ostream& notes) {
   const fs::path path = folder.path(sweep_files::kGrid);
   const std::string text = folder.grid.normalized.dump(2) + "\n";
   if (fs::exists(path)) {
     const auto before = read_json_file(path);
     if (before && *before == folder.grid.normalized) return;
+    if (before && decide && seeds_grown_by_looks(*before, folder.grid.normalized)) return;
     if (!before) {
       notes << "rapid sweep: " << path.string() << " was unreadable; replacing it\n";
     } else {
@@ -193,7 +206,7 @@ int submit_to_slurm(const SweepOptions& o, SweepFolder& folder, const Selection&
   refuse_foreign_folder(dir, out_option(o, dir), {sweep_files::kGrid}, "a sweep folder", o.force);
   make_output_folder(dir, out_option(o, dir));
   const auto lock = lock_folder(dir);
-  update_grid_file(folder, std::cerr);
+  update_grid_file(folder, o.decide, std::cerr);
   reuse_datasets_from(source, folder);
   const DecideOnSlurm decide{.slurm = options, .summary = !o.no_summary, .animations = !o.no_animations};
   if (o.decide) start_decide(dir, folder.grid, o.decide_settings, {{"slurm", decide_on_slurm_json(decide)}});
@@ -273,7 +286,7 @@ int sweep_of(const SweepOptions& o, const Grid& grid) {
   refuse_foreign_folder(dir, out_option(o, dir), {sweep_files::kGrid}, "a sweep folder", o.force);
   make_output_folder(dir, out_option(o, dir));
   const auto lock = lock_folder(dir);
-  update_grid_file(folder, std::cerr);
+  update_grid_file(folder, o.decide, std::cerr);
   if (!o.check_references) reuse_datasets_from(source, folder);
   if (o.decide) start_decide(dir, folder.grid, o.decide_settings);
 

@@ -12,18 +12,18 @@ bool integer(const nlohmann::json& plan, const char* key) {
   return plan.contains(key) && plan[key].is_number_integer() && plan[key].get<long>() > 0;
 }
 
-std::string seed_range(const nlohmann::json& seeds) {
-  if (!seeds.is_array() || seeds.empty()) return "none";
-  const std::string first = seeds.front().dump(), last = seeds.back().dump();
-  return first == last ? first : first + "-" + last;
-}
-
 std::string percent(double part, double whole) {
   std::ostringstream out;
   out << static_cast<long>(100.0 * part / whole + 0.5) << " %";
   return out.str();
 }
 }  // namespace
+
+std::string seed_range(const nlohmann::json& seeds) {
+  if (!seeds.is_array() || seeds.empty()) return "none";
+  const std::string first = seeds.front().dump(), last = seeds.back().dump();
+  return first == last ? first : first + "-" + last;
+}
 
 std::string look_verdicts_text(const nlohmann::json& look) {
   std::string text;

@@ -20,6 +20,9 @@ namespace rapid {
 nlohmann::json adaptive_seeds_summary(const nlohmann::json& plan, const std::vector<CellSummary>& cells,
                                       const RunProvenance& provenance);
 
+// "10-14" of a look's added seeds as both reports write them ("10" for one seed, "none" for none).
+std::string seed_range(const nlohmann::json& seeds);
+
 // One look of "adaptive_seeds": its verdicts ("C1 UNDECIDED, C2 …") and the cells it grew
 // ("merge/initial/rapid-rl, …"), as both reports list them.
 std::string look_verdicts_text(const nlohmann::json& look);

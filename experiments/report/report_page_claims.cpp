@@ -75,7 +75,7 @@ std::string adaptive(const nlohmann::json& summary) {
     const nlohmann::json added = look.value("added_seeds", nlohmann::json::array());
     const std::size_t cells = look.value("cells", nlohmann::json::array()).size();
     html += "<tr><td>" + std::to_string(look.value("look", 0)) + "</td><td>" + html_escape(look_verdicts_text(look)) +
-            "</td><td>" + (added.empty() ? std::string("—") : added.front().dump() + "-" + added.back().dump()) +
+            "</td><td>" + (added.empty() ? std::string("—") : seed_range(added)) +
             "</td><td>" +
             (cells == 0 ? std::string("—")
                         : "<details><summary>" + std::to_string(cells) + "</summary>" +

@@ -62,6 +62,9 @@ TEST(Decide, AddsBlocksOfSeedsToUndecidedCellsAndResumesWithoutRerunning) {
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_TRUE(jobs_ran(sweep).empty());
   EXPECT_EQ(read_json(sweep / "decide.json")["looks"], plan["looks"]);
+  // The seeds the looks added are theirs, not a change to the grid the user should hear of.
+  EXPECT_EQ(again.output.find("the grid differs"), std::string::npos) << again.output;
+  EXPECT_EQ(read_json(sweep / "grid.json")["seeds"], nlohmann::json({0, 1, 2, 3}));
 
   // The same sweep's seeds resampled: the three designs, from the grid's own two seeds.
   const Result sim = run_rapid("simulate-decide " + sweep.string() + " --experiments 20 --max-seeds 4 --block 1");
