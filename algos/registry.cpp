@@ -22,26 +22,26 @@ std::unique_ptr<ActorCritic> make(int obs_dim, int act_dim, const AgentConfig& c
 
 const std::vector<Algorithm>& algorithms() {
   static const std::vector<Algorithm> table = {
-      // name       display      prior  the actor loss's imitation weights  own keys
-      {"rapid-rl", "RAPID-RL", true, make<RapidRl>, {"epsilon", "bc_q_alpha"}},
+      // name       display      colour     prior  the actor loss's imitation weights  own keys
+      {kRapidRl, "RAPID-RL", "tab:red", true, make<RapidRl>, {"epsilon", "bc_q_alpha"}},
       // RLPD as the paper uses it: the backbone on symmetric batches, no imitation term.
-      {"rlpd", "RLPD", true, make<ActorCritic>, {}},
-      {"col-prior", "CoL-prior", true, make<ColPrior>, {"lambda_bc", "bc_q_alpha"}},
-      {"col-all", "CoL-all", true, make<ColAll>, {"lambda_bc", "bc_q_alpha"}},
-      {"ddpg", "DDPG", false, make<ActorCritic>, {}},
+      {"rlpd", "RLPD", "tab:blue", true, make<ActorCritic>, {}},
+      {"col-prior", "CoL-prior", "tab:green", true, make<ColPrior>, {"lambda_bc", "bc_q_alpha"}},
+      {"col-all", "CoL-all", "tab:purple", true, make<ColAll>, {"lambda_bc", "bc_q_alpha"}},
+      {"ddpg", "DDPG", "tab:gray", false, make<ActorCritic>, {}},
       // Not in the paper: RAPID-RL weighting by the mean reward over the next decisions.
-      {"rapid-rl-return", "RAPID-RL (return)", true, make<RapidRlReturn>, {"epsilon", "return_horizon", "bc_q_alpha"},
-       /*uses_returns=*/true, /*in_paper=*/false},
+      {"rapid-rl-return", "RAPID-RL (return)", "tab:orange", true, make<RapidRlReturn>, {"epsilon", "return_horizon", "bc_q_alpha"},
+       /*uses_returns=*/true, /*in_paper=*/false, /*variant=*/true},
       // Not in the paper: RLPD as published (SAC, an ensemble of 10 critics, UTD 20; rlpd_sac.hpp).
-      {"rlpd-sac", "RLPD (SAC)", true, make<RlpdSac>,
+      {"rlpd-sac", "RLPD (SAC)", "tab:cyan", true, make<RlpdSac>,
        {"utd_ratio", "critic_ensemble", "critic_subset", "init_temperature", "target_entropy_per_dim"},
-       /*uses_returns=*/false, /*in_paper=*/false,
+       /*uses_returns=*/false, /*in_paper=*/false, /*variant=*/false,
        {{"utd_ratio", 20}, {"critic_ensemble", 10}, {"critic_subset", 2}, {"init_temperature", 1.0},
         {"target_entropy_per_dim", -0.5}}},
       // Not in the paper: TD3+BC online on symmetric batches (td3_bc.hpp).
-      {"td3-bc", "TD3+BC", true, make<Td3Bc>,
+      {"td3-bc", "TD3+BC", "tab:brown", true, make<Td3Bc>,
        {"critic_ensemble", "critic_subset", "policy_delay", "target_noise", "target_noise_clip", "bc_q_alpha"},
-       /*uses_returns=*/false, /*in_paper=*/false,
+       /*uses_returns=*/false, /*in_paper=*/false, /*variant=*/false,
        {{"critic_ensemble", 2}, {"critic_subset", 2}, {"policy_delay", 2}, {"target_noise", 0.2},
         {"target_noise_clip", 0.5}, {"bc_q_alpha", 2.5}}},
   };

@@ -12,9 +12,13 @@
 
 namespace rapid {
 
+// The method the paper proposes: every report compares the other algorithms with it.
+inline const std::string kRapidRl = "rapid-rl";
+
 struct Algorithm {
   std::string name;          // --algo, grids, run records, report keys
   std::string display_name;  // tables and figures, as the paper prints it
+  std::string colour;        // its lines in every figure (a matplotlib colour; summary.json carries it to scripts/plot)
   // Every batch is B/2 from the prior dataset and B/2 online (symmetric sampling), so a run needs
   // a dataset; otherwise the whole batch is online and a run takes no dataset.
   bool uses_prior = false;
@@ -32,6 +36,9 @@ struct Algorithm {
   // One of the paper's five algorithms (Table I's columns): the claims check and the probability
   // that RAPID-RL beats each baseline concern these only.
   bool in_paper = true;
+  // A variant of RAPID-RL itself (an ablation such as rapid-rl-return): the reports ask whether it
+  // beats RAPID-RL. Every other algorithm is a baseline, and they ask whether RAPID-RL beats it.
+  bool variant = false;
   // The published values of its own keys (RLPD's UTD and ensemble, TD3's delay and noise), given
   // to a run whose config leaves the key out (experiments/run/job.hpp, with_recipe): the run's
   // record lists the keys they filled. A config that gives the key wins.

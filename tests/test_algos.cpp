@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -236,7 +237,11 @@ TEST(Registry, RowsInThePapersColumnOrderWithPriorUseAndUnknownNames) {
     for (const auto& [key, value] : a.recipe) EXPECT_TRUE(a.reads(key) && is_algorithm_key(key)) << a.name << " " << key;
     EXPECT_EQ(a.recipe.empty(), a.in_paper || a.name == "rapid-rl-return") << a.name;
     EXPECT_EQ(a.uses_returns, a.name == "rapid-rl-return") << a.name;
+    EXPECT_EQ(a.variant, a.name == "rapid-rl-return") << a.name;
   }
+  // Every figure tells the algorithms apart by colour (scripts/plot reads it from summary.json).
+  std::set<std::string> colours;
+  for (const Algorithm& a : algorithms()) EXPECT_TRUE(!a.colour.empty() && colours.insert(a.colour).second) << a.name;
   EXPECT_EQ(find_algorithm("col-prior").display_name, "CoL-prior");
   EXPECT_EQ(find_algorithm("rapid-rl-return").display_name, "RAPID-RL (return)");
   try {

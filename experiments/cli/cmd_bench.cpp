@@ -24,7 +24,7 @@ namespace {
 struct BenchOptions {
   std::string scenario;  // empty: the three driving scenarios
   std::string json_file;
-  std::string train_algo = "rapid-rl";
+  std::string train_algo = kRapidRl;
   std::string profile = kDefaultProfile;
   bool quick = false;
   bool no_sweep = false;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 
+#include "algos/registry.hpp"
 #include "experiments/report/format.hpp"
 
 namespace rapid {
@@ -41,7 +42,7 @@ std::string count_text(int wins, int total) { return std::to_string(wins) + "/" 
 // the rows.
 ClaimResult most_rows_best(const Summary& s, ClaimResult c, const std::string& score_name,
                            const std::function<std::optional<double>(const CellSummary&)>& score) {
-  if (!has(s.grid.algos, "rapid-rl")) return not_applicable(c, "the grid has no rapid-rl");
+  if (!has(s.grid.algos, kRapidRl)) return not_applicable(c, "the grid has no rapid-rl");
   if (std::none_of(s.grid.algos.begin(), s.grid.algos.end(), is_paper_baseline))
     return not_applicable(c, "the grid has no other algorithm to compare with");
   c.header = {"scenario / dataset", "RAPID-RL " + score_name, "best other", "RAPID-RL highest"};
@@ -52,7 +53,7 @@ ClaimResult most_rows_best(const Summary& s, ClaimResult c, const std::string& s
     std::string best_other_algo;
     for (const auto& [algo, index] : row.cells) {
       const std::optional<double> v = score(s.cells[index]);
-      if (algo == "rapid-rl") ours = v;
+      if (algo == kRapidRl) ours = v;
       else if (is_paper_baseline(algo) && v && (!best_other || *v > *best_other)) {
         best_other = v;
         best_other_algo = algo;
@@ -138,7 +139,7 @@ BcWindow bc_window(const CellSummary& cell, double from, double to) {
 
 ClaimResult check_c6(const Summary& s, ClaimResult c) {
   if (!has(s.grid.scenarios, "merge")) return not_applicable(c, "the grid has no merge scenario");
-  if (!has(s.grid.algos, "rapid-rl")) return not_applicable(c, "the grid has no rapid-rl");
+  if (!has(s.grid.algos, kRapidRl)) return not_applicable(c, "the grid has no rapid-rl");
   for (const char* d : {"initial", "final+medium"})
     if (!has(s.grid.datasets, d)) return not_applicable(c, std::string("the grid has no ") + d + " dataset");
   c.header = {"dataset", "steps", "mean prior BC", "mean online BC", "prior < online at", "expected", "holds"};
@@ -156,10 +157,10 @@ ClaimResult check_c6(const Summary& s, ClaimResult c) {
     if (!cell || cell->bc_prior.empty()) return {0.0, -1.0};
     return {cell->bc_prior.step.front(), cell->bc_prior.step.back()};
   };
-  const CellSummary* good = s.find("merge", "final+medium", "rapid-rl");
+  const CellSummary* good = s.find("merge", "final+medium", kRapidRl);
   const auto [g0, g1] = range(good);
   add("final+medium", "all", good ? bc_window(*good, g0, g1) : BcWindow{}, true);
-  const CellSummary* poor = s.find("merge", "initial", "rapid-rl");
+  const CellSummary* poor = s.find("merge", "initial", kRapidRl);
   const auto [p0, p1] = range(poor);
   const double fifth = (p1 - p0) * 0.2;
   add("initial", "first 20%", poor ? bc_window(*poor, p0, p0 + fifth) : BcWindow{}, true);
@@ -185,7 +186,7 @@ std::vector<ClaimResult> check_claims(const Summary& s) {
       claim("C2", "RAPID-RL beats DDPG in every scenario, the initial dataset included.",
             "PASS when RAPID-RL's mean final return is strictly above DDPG's in every scenario × dataset row; a row "
             "where either has no ok seed fails."),
-      "rapid-rl", "ddpg", true));
+      kRapidRl, "ddpg", true));
   out.push_back(every_row(
       s,
       claim("C3", "CoL-all is below DDPG in every scenario × dataset cell.",

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "algos/registry.hpp"
 #include "experiments/report/curves.hpp"
 #include "experiments/report/format.hpp"
 #include "core/json_input.hpp"
@@ -86,15 +87,15 @@ class Builder {
   ClaimSpec most_rows(const std::string& id, const std::string& metric,
                       const std::function<std::vector<double>(const CellSummary&)>& values) {
     ClaimSpec c{id, {}, 0, {}};
-    if (!has(s_.grid.algos, "rapid-rl")) return na(c, "the grid has no rapid-rl");
+    if (!has(s_.grid.algos, kRapidRl)) return na(c, "the grid has no rapid-rl");
     if (std::none_of(s_.grid.algos.begin(), s_.grid.algos.end(), is_paper_baseline))
       return na(c, "the grid has no other algorithm to compare with");
     for (const TableRow& row : s_.rows) {
       Group g;
-      const CellSummary* ours = s_.column_cell(row, "rapid-rl");
+      const CellSummary* ours = s_.column_cell(row, kRapidRl);
       for (const auto& [algo, index] : row.cells) {
         if (!is_paper_baseline(algo)) continue;
-        g.comparisons.push_back(add(two_sample(row_label(row), metric, algo_display_name("rapid-rl"),
+        g.comparisons.push_back(add(two_sample(row_label(row), metric, algo_display_name(kRapidRl),
                                                algo_display_name(algo), ours, &s_.cells[index], values,
                                                delta(row.scenario))));
       }
@@ -138,12 +139,12 @@ class Builder {
   ClaimSpec c6() {
     ClaimSpec c{"C6", {}, 0, {}};
     if (!has(s_.grid.scenarios, "merge")) return na(c, "the grid has no merge scenario");
-    if (!has(s_.grid.algos, "rapid-rl")) return na(c, "the grid has no rapid-rl");
+    if (!has(s_.grid.algos, kRapidRl)) return na(c, "the grid has no rapid-rl");
     for (const char* d : {"initial", "final+medium"})
       if (!has(s_.grid.datasets, d)) return na(c, std::string("the grid has no ") + d + " dataset");
     Group g;
     const auto add_bc = [&](const std::string& dataset, const std::string& window, double from, double to, ComparisonOutcome wanted) {
-      const CellSummary* cell = s_.find("merge", dataset, "rapid-rl");
+      const CellSummary* cell = s_.find("merge", dataset, kRapidRl);
       Comparison cmp;
       cmp.where = "merge / " + dataset + ", " + window;
       cmp.metric = "BC loss";
@@ -158,7 +159,7 @@ class Builder {
       g.comparisons.push_back(add(std::move(cmp)));
     };
     const auto range = [&](const std::string& dataset) -> std::pair<double, double> {
-      const CellSummary* cell = s_.find("merge", dataset, "rapid-rl");
+      const CellSummary* cell = s_.find("merge", dataset, kRapidRl);
       if (!cell || cell->bc_prior.empty()) return {0.0, -1.0};
       return {cell->bc_prior.step.front(), cell->bc_prior.step.back()};
     };
@@ -328,7 +329,7 @@ Decisions decide_claims(const Summary& s, const DecisionSettings& settings) {
     return b.finish(std::move(specs));
   }
   specs.push_back(b.most_rows("C1", "final return", [](const CellSummary& c) { return c.finals; }));
-  specs.push_back(b.every_row("C2", "rapid-rl", "ddpg", ComparisonOutcome::kXBetter));
+  specs.push_back(b.every_row("C2", kRapidRl, "ddpg", ComparisonOutcome::kXBetter));
   specs.push_back(b.every_row("C3", "col-all", "ddpg", ComparisonOutcome::kYBetter));
   specs.push_back(b.c4());
   specs.push_back(b.most_rows("C5", "curve area", seed_areas));

@@ -169,9 +169,9 @@ void build_sensitivity(Summary& s) {
 
 void build_poi(Summary& s) {
   for (const TableRow& row : s.rows) {
-    const CellSummary* ours = s.column_cell(row, "rapid-rl");
+    const CellSummary* ours = s.column_cell(row, kRapidRl);
     if (!ours) continue;
-    // x beats y: RAPID-RL a paper baseline, or a variant the paper does not have RAPID-RL.
+    // x beats y: RAPID-RL a baseline, or a variant of RAPID-RL RAPID-RL.
     auto compare = [&](const CellSummary& x, const CellSummary& y, const std::string& key) {
       PoiEntry e;
       e.scenario = row.scenario;
@@ -192,9 +192,9 @@ void build_poi(Summary& s) {
       s.poi.push_back(e);
     };
     for (const auto& [algo, index] : row.cells)
-      if (is_paper_baseline(algo)) compare(*ours, s.cells[index], algo);
+      if (is_baseline(algo)) compare(*ours, s.cells[index], algo);
     for (const auto& [algo, index] : row.cells)
-      if (!find_algorithm(algo).in_paper) compare(s.cells[index], *ours, algo + ">rapid-rl");
+      if (find_algorithm(algo).variant) compare(s.cells[index], *ours, algo + ">rapid-rl");
   }
 }
 

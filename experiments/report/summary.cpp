@@ -4,7 +4,9 @@
 
 namespace rapid {
 
-bool is_paper_baseline(const std::string& algo) { return algo != "rapid-rl" && find_algorithm(algo).in_paper; }
+bool is_paper_baseline(const std::string& algo) { return algo != kRapidRl && find_algorithm(algo).in_paper; }
+
+bool is_baseline(const std::string& algo) { return algo != kRapidRl && !find_algorithm(algo).variant; }
 
 std::string CellSummary::key() const {
   return scenario + "/" + (dataset.empty() ? "none" : dataset) + "/" + algo + (axis.empty() ? "" : "/" + point_label(axis));

@@ -77,16 +77,21 @@ struct TableRow {
   std::optional<std::string> best;  // the algorithm with the highest mean (ties: the first column)
 };
 
-// The paper's baselines RAPID-RL is compared with (P(RAPID-RL > baseline), claims C1 and C5): its
-// other Table I columns. An algorithm the paper does not have (rapid-rl-return) is a column of our
-// tables, not one of its baselines.
+// The paper's baselines, which the claims compare RAPID-RL with (C1, C5): its other Table I
+// columns. An algorithm the paper does not have (rlpd-sac, rapid-rl-return) is a column of our
+// tables, and the claims leave it out.
 bool is_paper_baseline(const std::string& algo);
 
-// P(algo > baseline) in one row: RAPID-RL against each paper baseline, and each algorithm the
-// paper does not have (a variant of RAPID-RL) against RAPID-RL.
+// An algorithm RAPID-RL is asked to beat in the probability-of-improvement table: the paper's
+// baselines and those it does not have (rlpd-sac, td3-bc), but not RAPID-RL's own variants
+// (Algorithm::variant, such as rapid-rl-return), which are asked to beat RAPID-RL instead.
+bool is_baseline(const std::string& algo);
+
+// P(algo > baseline) in one row: RAPID-RL against each baseline (is_baseline), and each variant of
+// RAPID-RL against RAPID-RL.
 struct PoiEntry {
   std::string scenario, dataset, baseline;
-  std::string algo = "rapid-rl";
+  std::string algo;  // RAPID-RL, or a variant of it beside RAPID-RL as the baseline
   std::string point;  // the row's axis point label
   double p = 0.0;
   std::optional<Interval> ci;

@@ -1,8 +1,9 @@
 // summary_to_json: the "rapid.summary/1" document (field by field in docs/reports.md).
+#include <algorithm>
 #include <cmath>
 
+#include "algos/registry.hpp"
 #include "experiments/report/summary.hpp"
-
 #include "experiments/run/json_numbers.hpp"
 
 namespace rapid {
@@ -117,6 +118,14 @@ nlohmann::json summary_to_json(const Summary& s) {
     for (const GridAxis& axis : s.grid.axes) axes[axis.key] = axis.values;
     j["grid"]["axes"] = axes;
   }
+  // The grid's algorithms as the registry describes them, in its order: what scripts/plot labels
+  // and colours its lines with, and which one is RAPID-RL (Figure 3(b)'s).
+  j["algorithms"] = nlohmann::json::array();
+  for (const Algorithm& a : algorithms())
+    if (std::find(s.grid.algos.begin(), s.grid.algos.end(), a.name) != s.grid.algos.end())
+      j["algorithms"].push_back({{"name", a.name}, {"label", a.display_name}, {"colour", a.colour},
+                                 {"uses_prior", a.uses_prior}, {"in_paper", a.in_paper}, {"variant", a.variant},
+                                 {"ours", a.name == kRapidRl}});
   j["statistics"] = {{"std", "population (ddof=0) over the ok seeds"},
                      {"iqm", "scipy.stats.trim_mean(x, 0.25)"},
                      {"interval", "percentile, stratified bootstrap"},

@@ -207,19 +207,19 @@ std::string table_markdown(const Summary& s) {
   }
 
   if (!s.poi.empty()) {
-    // Columns: (x, y) pairs, RAPID-RL against each paper baseline, then each variant the paper
-    // does not have against RAPID-RL.
+    // Columns: (x, y) pairs, RAPID-RL against each baseline, then each variant of RAPID-RL against
+    // RAPID-RL.
     std::vector<std::pair<std::string, std::string>> pairs;
     for (const auto& a : algos)
-      if (is_paper_baseline(a)) pairs.emplace_back("rapid-rl", a);
+      if (is_baseline(a)) pairs.emplace_back(kRapidRl, a);
     for (const auto& a : algos)
-      if (!find_algorithm(a).in_paper) pairs.emplace_back(a, "rapid-rl");
-    const bool variants = !pairs.empty() && pairs.back().second == "rapid-rl";
+      if (find_algorithm(a).variant) pairs.emplace_back(a, kRapidRl);
+    const bool variants = !pairs.empty() && pairs.back().second == kRapidRl;
     out << "\n## Probability that RAPID-RL beats each baseline" << (variants ? " (and that each variant beats RAPID-RL)" : "")
         << "\n\nP(X > Y) over the ok seeds (Mann–Whitney U / (n_x·n_y), ties count half), 95% stratified-bootstrap "
            "interval in brackets.\n\n| Scenario | Dataset |" << (axes ? " Axes |" : "");
     for (const auto& [x, y] : pairs)
-      out << (x == "rapid-rl" ? "" : " " + algo_display_name(x)) << " vs " << algo_display_name(y) << " |";
+      out << (x == kRapidRl ? "" : " " + algo_display_name(x)) << " vs " << algo_display_name(y) << " |";
     out << "\n|---|---|" << (axes ? "---|" : "");
     for (std::size_t i = 0; i < pairs.size(); ++i) out << "---:|";
     out << "\n";

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "algos/registry.hpp"
 #include "core/dataset_io.hpp"
 #include "core/statistics.hpp"
 #include "experiments/report/claims_markdown.hpp"
@@ -224,18 +225,19 @@ TEST(SummaryWithAReferenceAxis, ReadsEachPointsDatasets) {
   EXPECT_EQ(missing["error"], "datasets/gamma=0.99/pendulum/initial.h5 is missing");
 }
 
-// An algorithm the paper does not have (rapid-rl-return) is a sixth column after the paper's
-// five, under its own name, and can be the best of a row; it is not one of RAPID-RL's baselines
-// (no probability of beating it) and the claims leave it out, saying so.
-TEST(SummaryWithANonPaperAlgorithm, IsAColumnButNotABaselineNorPartOfTheClaims) {
+// Algorithms the paper does not have are columns after the paper's five, under their own names,
+// and can be the best of a row; the claims leave them out, saying so. A variant of RAPID-RL
+// (rapid-rl-return) is asked to beat RAPID-RL; another method (td3-bc) is a baseline RAPID-RL is
+// asked to beat, as the paper's are.
+TEST(SummaryWithANonPaperAlgorithm, IsAColumnButNotPartOfTheClaims) {
   testing::ScratchDir scratch;
   const std::filesystem::path sweep = scratch.path() / "sweep";
   nlohmann::json grid = report_test::make_grid("six", {"pendulum"}, {"initial"},
-                                               {"rapid-rl-return", "ddpg", "rapid-rl", "rlpd"}, {0, 1});
+                                               {"rapid-rl-return", "ddpg", "rapid-rl", "td3-bc", "rlpd"}, {0, 1});
   grid["config"]["return_horizon"] = 20;
   report_test::write_grid(sweep, grid);
   const std::vector<std::pair<std::string, double>> finals = {
-      {"rapid-rl", 10}, {"rlpd", 5}, {"ddpg", 3}, {"rapid-rl-return", 20}};
+      {"rapid-rl", 10}, {"rlpd", 5}, {"ddpg", 3}, {"rapid-rl-return", 20}, {"td3-bc", 12}};
   for (const auto& [algo, final] : finals)
     for (std::uint64_t seed : {0u, 1u})
       report_test::write_run(sweep, report_test::pendulum_run(algo == "ddpg" ? "" : "initial", algo, seed, final + seed));
@@ -243,23 +245,39 @@ TEST(SummaryWithANonPaperAlgorithm, IsAColumnButNotABaselineNorPartOfTheClaims) 
   const Summary s = build_summary(sweep);
   ASSERT_EQ(s.rows.size(), 1u);
   EXPECT_EQ(*s.rows[0].best, "rapid-rl-return");
-  // RAPID-RL against the paper's rlpd and ddpg; the variant against RAPID-RL (both its seeds above).
-  ASSERT_EQ(s.poi.size(), 3u);
+  // RAPID-RL against rlpd, ddpg and td3-bc; the variant against RAPID-RL (both its seeds above).
+  ASSERT_EQ(s.poi.size(), 4u);
   for (const PoiEntry& p : s.poi) EXPECT_NE(p.baseline, "rapid-rl-return");
-  EXPECT_EQ(s.poi[2].algo, "rapid-rl-return");
-  EXPECT_EQ(s.poi[2].baseline, "rapid-rl");
-  EXPECT_DOUBLE_EQ(s.poi[2].p, 1.0);
-  EXPECT_EQ(s.aggregate.back().algo, "rapid-rl-return");
+  const auto td3_bc = std::find_if(s.poi.begin(), s.poi.end(), [](const PoiEntry& p) { return p.baseline == "td3-bc"; });
+  ASSERT_NE(td3_bc, s.poi.end());
+  EXPECT_EQ(td3_bc->algo, "rapid-rl");
+  EXPECT_DOUBLE_EQ(td3_bc->p, 0.0);  // RAPID-RL's 10 and 11 below TD3+BC's 12 and 13
+  EXPECT_EQ(s.poi.back().algo, "rapid-rl-return");
+  EXPECT_EQ(s.poi.back().baseline, "rapid-rl");
+  EXPECT_DOUBLE_EQ(s.poi.back().p, 1.0);
+  EXPECT_EQ(s.aggregate.back().algo, "td3-bc");
+  // scripts/plot labels and colours its lines as the registry says, in the registry's order.
+  const nlohmann::json listed = summary_to_json(s)["algorithms"];
+  ASSERT_EQ(listed.size(), 5u) << listed.dump();
+  EXPECT_EQ(listed[0]["name"], "rapid-rl");
+  EXPECT_EQ(listed[0]["ours"], true);
+  EXPECT_EQ(listed[2]["name"], "ddpg");
+  EXPECT_EQ(listed[2]["uses_prior"], false);
+  EXPECT_EQ(listed[3]["variant"], true);  // rapid-rl-return
+  EXPECT_EQ(listed[4], nlohmann::json({{"name", "td3-bc"}, {"label", "TD3+BC"}, {"colour", find_algorithm("td3-bc").colour},
+                                       {"uses_prior", true}, {"in_paper", false}, {"variant", false}, {"ours", false}}));
 
   const std::string md = table_markdown(s);
-  EXPECT_NE(md.find("| Scenario | Dataset | RAPID-RL | RLPD | DDPG | RAPID-RL (return) |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| Pendulum | Initial | 10.50 ± 0.50 | 5.50 ± 0.50 | 3.50 ± 0.50 | **20.50 ± 0.50** |"),
+  EXPECT_NE(md.find("| Scenario | Dataset | RAPID-RL | RLPD | DDPG | RAPID-RL (return) | TD3+BC |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| Pendulum | Initial | 10.50 ± 0.50 | 5.50 ± 0.50 | 3.50 ± 0.50 | **20.50 ± 0.50** | 12.50 ± 0.50 |"),
             std::string::npos)
       << md;
-  EXPECT_NE(md.find("| Scenario | Dataset | vs RLPD | vs DDPG | RAPID-RL (return) vs RAPID-RL |\n"), std::string::npos) << md;
+  EXPECT_NE(md.find("| Scenario | Dataset | vs RLPD | vs DDPG | vs TD3+BC | RAPID-RL (return) vs RAPID-RL |\n"),
+            std::string::npos)
+      << md;
   EXPECT_NE(md.find("| Pendulum | Initial | 1.00 ["), std::string::npos) << md;
   EXPECT_NE(md.find("| RAPID-RL (return) | 20.50 |"), std::string::npos) << md;
-  EXPECT_NE(table_latex(s).find("Dataset & RAPID-RL & RLPD & DDPG & RAPID-RL (return) \\\\"), std::string::npos);
+  EXPECT_NE(table_latex(s).find("Dataset & RAPID-RL & RLPD & DDPG & RAPID-RL (return) & TD3+BC \\\\"), std::string::npos);
   EXPECT_NE(table_csv(s).find(",rapid-rl-return_mean,"), std::string::npos);
 
   const auto c1 = std::find_if(s.claims.begin(), s.claims.end(), [](const ClaimResult& c) { return c.id == "C1"; });
@@ -267,7 +285,7 @@ TEST(SummaryWithANonPaperAlgorithm, IsAColumnButNotABaselineNorPartOfTheClaims) 
   EXPECT_EQ(c1->verdict, "PASS") << c1->reason;  // RAPID-RL is the best of the paper's algorithms
   EXPECT_EQ(c1->rows[0][2], "RLPD 5.5");
   const std::string claims = claims_markdown(s);
-  EXPECT_NE(claims.find("The grid also has RAPID-RL (return), which the paper does not have"), std::string::npos)
+  EXPECT_NE(claims.find("The grid also has RAPID-RL (return), TD3+BC, which the paper does not have"), std::string::npos)
       << claims;
 }
 
