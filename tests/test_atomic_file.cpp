@@ -68,6 +68,8 @@ TEST_F(AtomicFile, NeverReplacesWhatIsNotARegularFile) {
   EXPECT_EQ(read_file(file("mine")), "x");
   EXPECT_TRUE(test::is_fifo(file("fifo")));
   EXPECT_TRUE(fs::is_directory(file("folder")));
-  if (device) EXPECT_TRUE(test::is_device(file("null")));
+  if (device) {
+    EXPECT_TRUE(test::is_device(file("null")));
+  }
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 4 + device) << "no temporary left";
 }

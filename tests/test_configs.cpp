@@ -85,7 +85,7 @@ TEST(DefaultConfigs, TheKeyTableOfDocsAlgorithmsMdIsTheConfigKeysAndFiles) {
 
 TEST(DefaultConfigs, EpsilonOfEachDrivingScenarioIsTheOneDocsScenariosMdExplains) {
   const std::string doc = read_doc("scenarios.md");
-  for (const std::string& scenario : {"lane-drop", "cut-in", "merge"}) {
+  for (const std::string scenario : {"lane-drop", "cut-in", "merge"}) {
     SCOPED_TRACE(scenario);
     const std::string row = "\n| " + scenario + " | ";
     const auto at = doc.find(row);

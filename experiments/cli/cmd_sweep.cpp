@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <iostream>
+#include <map>
 #include <optional>
 #include <regex>
 #include <thread>
@@ -61,10 +62,9 @@ struct SweepOptions {
 double parse_job_timeout(const std::string& text) {
   static const std::regex pattern(R"(([0-9]+(\.[0-9]+)?)([smhd]?))");
   std::smatch m;
-  const double scale[] = {1, 60, 3600, 86400};
+  static const std::map<std::string, double> seconds_per = {{"", 1}, {"s", 1}, {"m", 60}, {"h", 3600}, {"d", 86400}};
   if (std::regex_match(text, m, pattern)) {
-    const std::string unit = m[3].str();
-    const double seconds = std::stod(m[1].str()) * scale[unit.empty() ? 0 : std::string("smhd").find(unit[0])];
+    const double seconds = std::stod(m[1].str()) * seconds_per.at(m[3].str());
     if (seconds > 0) return seconds;
   }
   throw UsageError("--job-timeout: '" + text + "' is not a positive duration; use e.g. 90s, 45m or 2h");

@@ -88,7 +88,7 @@ bool cut_in_only(const std::string& scenario) {
 template <typename T, typename Holder>
 ConfigKey key(std::string name, T Holder::*field, Bounds bounds, std::string doc,
               bool (*for_scenario)(const std::string&) = nullptr) {
-  ConfigKey k{name, part_of<Holder>(), type_name<T>(), bounds, std::move(doc), for_scenario, {}, {}, {}};
+  ConfigKey k{name, part_of<Holder>(), type_name<T>(), bounds, std::move(doc), for_scenario, {}, {}, {}, {}};
   k.read = [name, field, bounds](const nlohmann::json& v, RunConfig& config) {
     const T x = typed<T>(name, v);
     check_bounds(name, bounds, x, v);

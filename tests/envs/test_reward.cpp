@@ -66,7 +66,9 @@ TEST(DrivingReward, TermsSumToTheRewardBitForBit) {
       ASSERT_EQ(again, t.total);
       EXPECT_GE(t.gap, 0.0);
       EXPECT_GE(t.follower, 0.0);
-      if (in.collision) EXPECT_EQ(t.velocity + t.gap + t.follower + t.failed_lane_change, 0.0);
+      if (in.collision) {
+        EXPECT_EQ(t.velocity + t.gap + t.follower + t.failed_lane_change, 0.0);
+      }
     }
   }
 }

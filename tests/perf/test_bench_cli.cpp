@@ -139,7 +139,9 @@ TEST(RapidBench, AJsonFileThatCannotBeWrittenIsRefusedFirst) {
   EXPECT_EQ(run(args + (dir / "fifo.json").string()), 2);
   {
     const rapid::test::ReadOnlyFolder read_only(dir / "read-only");
-    if (read_only.usable()) EXPECT_EQ(run(args + (read_only / "bench.json")), 2);
+    if (read_only.usable()) {
+      EXPECT_EQ(run(args + (read_only / "bench.json")), 2);
+    }
   }
   EXPECT_TRUE(fs::is_symlink(dir / "link.json"));
   EXPECT_TRUE(rapid::test::is_fifo((dir / "fifo.json").string()));

@@ -172,8 +172,11 @@ TEST(SweepAxes, ResumesAfterAKillRerunsOnlyTheEditedValueAndReportsPerAxis) {
   EXPECT_EQ(jobs_ran(sweep), (std::vector<std::string>{"pendulum/initial/col-all/lambda_bc=30/seed0"}));
   EXPECT_NE(r.output.find("axes.lambda_bc: [0.1,1,10] → [0.1,1,30]"), std::string::npos) << r.output;
   const auto now = record_identities(sweep);
-  for (const auto& [job, identity] : all)
-    if (job.find("lambda_bc=10") == std::string::npos) EXPECT_EQ(now.at(job), identity) << job;
+  for (const auto& [job, identity] : all) {
+    if (job.find("lambda_bc=10") == std::string::npos) {
+      EXPECT_EQ(now.at(job), identity) << job;
+    }
+  }
 
   // The reports: rows per axis point, a sensitivity line per axis × algorithm, runs.csv.
   const json summary = read_json(sweep / "summary.json");

@@ -84,9 +84,11 @@ TEST_F(SmallSweep, ACorruptRecordIsNotDoneAndARerunRepairsIt) {
   const json s = status();
   EXPECT_EQ(s["counts"]["ok"], 3) << s.dump();  // the dataset stage and rapid-rl/seed1
   EXPECT_EQ(s["counts"]["failed"], 3) << s.dump();
-  for (const json& job : s["jobs"])
-    if (job["state"] == "failed")
+  for (const json& job : s["jobs"]) {
+    if (job["state"] == "failed") {
       EXPECT_NE(job["detail"].get<std::string>().find("is corrupt"), std::string::npos) << job.dump();
+    }
+  }
 
   const Result rerun = sweep();
   ASSERT_EQ(rerun.exit_code, 0) << rerun.output;
