@@ -2,10 +2,20 @@
 
 #include <stdexcept>
 
+#include "experiments/cli/errors.hpp"
 #include "experiments/run/run_config.hpp"
 #include "experiments/sweep/grid.hpp"
 
 namespace rapid {
+
+void load_grid_scenarios(const std::string& grid_path) {
+  if (grid_path.empty()) return;
+  try {
+    load_grid(grid_path);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+}
 
 nlohmann::json resolve_cli_config(const std::string& scenario, const std::string& profile, const std::string& grid_path,
                                   const nlohmann::json& set_overrides) {

@@ -9,6 +9,11 @@ namespace rapid {
 
 // Throws std::invalid_argument naming the option that is wrong (an unknown profile, one that
 // differs from the grid's, a bad grid or override).
+// Reads the grid at `grid_path`, when one is given, so that its scenario files are known by their
+// names ("scenario_files") to every later check; a bad grid is a UsageError saying "grid PATH:
+// FIELD: problem", as every command says it.
+void load_grid_scenarios(const std::string& grid_path);
+
 nlohmann::json resolve_cli_config(const std::string& scenario, const std::string& profile, const std::string& grid_path,
                                   const nlohmann::json& set_overrides);
 

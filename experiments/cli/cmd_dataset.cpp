@@ -151,14 +151,7 @@ struct BuildOptions {
 
 int run_build(const BuildOptions& o) {
   DatasetBuildSpec spec;
-  // A grid's scenario files are known by their names once it is read (its "scenario_files").
-  if (!o.grid.empty()) {
-    try {
-      load_grid(o.grid);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(e.what());  // "grid PATH: FIELD: problem", as every command says it
-    }
-  }
+  load_grid_scenarios(o.grid);
   check_option("--scenario", [&] { make_env(o.scenario); });
   spec.scenario = o.scenario;
   spec.dir = o.dir;

@@ -16,7 +16,6 @@
 #include "experiments/run/record.hpp"
 #include "experiments/run/run_config.hpp"
 #include "experiments/run/run_job.hpp"
-#include "experiments/sweep/grid.hpp"
 
 namespace rapid {
 
@@ -63,14 +62,7 @@ std::unique_ptr<FolderLock> lock_run_folder(const std::string& dir) {
 
 int run_command(const RunOptions& o) {
   JobSpec spec;
-  // A grid's scenario files are known by their names once it is read (its "scenario_files").
-  if (!o.grid.empty()) {
-    try {
-      load_grid(o.grid);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(e.what());  // "grid PATH: FIELD: problem", as every command says it
-    }
-  }
+  load_grid_scenarios(o.grid);
   check_option("--scenario", [&] { make_env(o.scenario); });
   check_option("--algo", [&] { find_algorithm(o.algo); });
   check_option("--dataset", [&] { check_dataset_fits(o.algo, !o.dataset.empty()); });
