@@ -10,7 +10,7 @@ RunCost predict_run_cost(const std::string& scenario, const std::string& algo, c
   c.scenario = scenario;
   c.algo = algo;
   c.decisions = config.steps;
-  c.learning_steps = config.steps * std::max(config.agent.utd_ratio, 1);
+  c.learning_steps = config.steps * config.agent.utd_ratio;
   // The trainer evaluates at 0, every eval_every decisions and at T, where one evaluation of
   // max(eval_episodes, final_eval_episodes) serves the curve and the final return
   // (experiments/run/trainer.cpp).

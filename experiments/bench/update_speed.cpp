@@ -2,7 +2,6 @@
 
 #include <omp.h>
 
-#include <algorithm>
 #include <map>
 #include <memory>
 #include <tuple>
@@ -81,7 +80,7 @@ class OmpThreads {
 
 }  // namespace
 
-int update_cycle(const AgentConfig& c) { return std::max(c.utd_ratio, 1) * std::max(c.policy_delay, 1); }
+int update_cycle(const AgentConfig& c) { return c.utd_ratio * c.policy_delay; }
 
 UpdateBenchResult bench_update(const std::string& algo, int obs_dim, int act_dim, const AgentConfig& config,
                                const UpdateBenchOptions& o) {
@@ -89,7 +88,7 @@ UpdateBenchResult bench_update(const std::string& algo, int obs_dim, int act_dim
   res.algo = algo;
   res.shape = "actor " + widths(obs_dim, config.actor_hidden, act_dim) + ", critic " +
               widths(obs_dim + act_dim, config.critic_hidden, 1) + ", batch " + std::to_string(config.batch_size);
-  res.critics = std::max(config.critic_ensemble, 1);
+  res.critics = config.critic_ensemble;
   res.cycle = update_cycle(config);
   // Per core: the plain GEMMs run on one thread, so the updates do too (an ensemble's members
   // would otherwise share the cores and the ratio would measure the cores, not the overhead).
