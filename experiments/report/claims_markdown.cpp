@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <numeric>
 #include <sstream>
 
 #include "algos/registry.hpp"
+#include "core/printable.hpp"
 #include "experiments/report/adaptive_seeds.hpp"
+#include "experiments/report/decisions.hpp"
 #include "experiments/report/format.hpp"
 
 namespace rapid {
@@ -78,18 +82,54 @@ std::string decided_intro(const Decisions& d) {
   return out.str();
 }
 
-std::string comparisons_table(const Decisions& d, const DecidedClaim& claim) {
-  if (claim.comparisons.empty()) return "";
+// The comparisons `which` of `d`, one line each; `claim_column`: with the outcome a claim needs.
+std::string comparisons_table(const Decisions& d, const std::vector<std::size_t>& which, bool claim_column) {
+  if (which.empty()) return "";
   std::ostringstream out;
-  out << "| where | metric | x vs y | seeds | x − y | p (difference) | p (within ±δ) | outcome | the claim needs | seeds to "
-         "resolve |\n|---|---|---|---|---:|---:|---:|---|---|---:|\n";
-  for (std::size_t i : claim.comparisons) {
+  out << "| where | metric | x vs y | seeds | x − y | p (difference) | p (within ±δ) | outcome | "
+      << (claim_column ? "the claim needs | " : "") << "seeds to resolve |\n|---|---|---|---|---:|---:|---:|---|"
+      << (claim_column ? "---|" : "") << "---:|\n";
+  for (std::size_t i : which) {
     const Comparison& c = d.comparisons[i];
     out << "| " << c.where << " | " << c.metric << " | " << c.x << " vs " << c.y << (c.paired ? " (paired)" : "") << " | "
         << c.xs.size() << " / " << c.ys.size() << " | " << short_number(c.d.diff) << " | " << p_text(c.p_difference)
-        << " | " << p_text(c.p_equivalence) << " | " << outcome_text(c, c.outcome) << " | " << outcome_text(c, c.wanted)
-        << " | " << (c.seeds_needed ? std::to_string(*c.seeds_needed) : "—") << " |\n";
+        << " | " << p_text(c.p_equivalence) << " | " << outcome_text(c, c.outcome) << " | "
+        << (claim_column ? outcome_text(c, c.wanted) + " | " : "")
+        << (c.seeds_needed ? std::to_string(*c.seeds_needed) : "—") << " |\n";
   }
+  return out.str();
+}
+
+// RAPID-RL against the baselines the paper does not run (decide_published_baselines): how many rows
+// each comparison's outcome took, then every comparison.
+std::string baseline_decisions_markdown(const Summary& s) {
+  if (!s.baseline_decisions) return "";
+  const Decisions& d = *s.baseline_decisions;
+  std::vector<std::string> names;
+  for (const std::string& algo : published_baselines(s)) names.push_back(algo_display_name(algo));
+  std::ostringstream out;
+  out << "\n## Beside the claims: RAPID-RL against " << comma_joined(names)
+      << "\n\nBaselines the paper does not run. RAPID-RL's final returns against each in every row, by the claims' tests "
+         "(Welch's t test, TOST within ±δ) but as a family of their own: "
+      << d.family_size << " hypotheses under Holm's procedure at α = " << short_number(d.settings.alpha_per_look())
+      << ", apart from the claims' family, so the claims' verdicts above are those the grid would get without these "
+         "baselines. \"Seeds to resolve\" as above.\n\n"
+      << "| baseline | rows | RAPID-RL higher | baseline higher | within ±δ | undecided |\n|---|---:|---:|---:|---:|---:|\n";
+  for (const std::string& name : names) {
+    std::map<ComparisonOutcome, int> count;
+    int rows = 0;
+    for (const Comparison& c : d.comparisons)
+      if (c.y == name) {
+        ++rows;
+        ++count[c.outcome];
+      }
+    out << "| " << name << " | " << rows << " | " << count[ComparisonOutcome::kXBetter] << " | "
+        << count[ComparisonOutcome::kYBetter] << " | " << count[ComparisonOutcome::kEquivalent] << " | "
+        << count[ComparisonOutcome::kUndecided] << " |\n";
+  }
+  std::vector<std::size_t> all(d.comparisons.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  out << "\n" << comparisons_table(d, all, /*claim_column=*/false);
   return out.str();
 }
 
@@ -114,7 +154,7 @@ std::string decided_claims_markdown(const Summary& s) {
     out << "\n## " << c.id << ": " << c.verdict << "\n\n";
     if (pm) out << "Claim: " << pm->statement << "\n\n";
     out << "Decided: " << c.reason << ".\n";
-    const std::string table = comparisons_table(d, c);
+    const std::string table = comparisons_table(d, c.comparisons, /*claim_column=*/true);
     if (!table.empty()) out << "\n" << table;
     if (pm) {
       out << "\nPoint-mean check (not a decision): " << pm->verdict << ". " << pm->definition << " " << pm->reason << ".\n";
@@ -122,7 +162,7 @@ std::string decided_claims_markdown(const Summary& s) {
       if (!means.empty()) out << "\n" << means;
     }
   }
-  out << adaptive_seeds_markdown(s.adaptive_seeds);
+  out << baseline_decisions_markdown(s) << adaptive_seeds_markdown(s.adaptive_seeds);
   return out.str();
 }
 

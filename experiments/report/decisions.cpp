@@ -174,6 +174,15 @@ class Builder {
     return c;
   }
 
+  // Per row, RAPID-RL against each baseline the paper does not run, on final return. Not a claim:
+  // each comparison's outcome is the answer.
+  void published_baselines(const std::vector<std::string>& baselines) {
+    for (const TableRow& row : s_.rows)
+      for (const std::string& algo : baselines)
+        add(two_sample(row_label(row), "final return", algo_display_name(kRapidRl), algo_display_name(algo),
+                       s_.column_cell(row, kRapidRl), s_.column_cell(row, algo), finals, delta(row.scenario)));
+  }
+
   Decisions finish(std::vector<ClaimSpec> specs) {
     out_.settings = settings_;
     run_tests();
@@ -335,6 +344,21 @@ Decisions decide_claims(const Summary& s, const DecisionSettings& settings) {
   specs.push_back(b.most_rows("C5", "curve area", seed_areas));
   specs.push_back(b.c6());
   return b.finish(std::move(specs));
+}
+
+std::vector<std::string> published_baselines(const Summary& s) {
+  std::vector<std::string> out;
+  for (const std::string& algo : s.grid.algos)
+    if (is_baseline(algo) && !find_algorithm(algo).in_paper) out.push_back(algo);
+  return out;
+}
+
+std::optional<Decisions> decide_published_baselines(const Summary& s, const DecisionSettings& settings) {
+  const std::vector<std::string> baselines = published_baselines(s);
+  if (baselines.empty() || !has(s.grid.algos, kRapidRl) || !s.grid.axes.empty()) return std::nullopt;
+  Builder b(s, settings);
+  b.published_baselines(baselines);
+  return b.finish({});
 }
 
 }  // namespace rapid

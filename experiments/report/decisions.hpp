@@ -21,4 +21,14 @@ std::optional<DecisionSettings> load_decision_settings(const std::string& profil
 // the grid lacks are N/A, as in check_claims.
 Decisions decide_claims(const Summary& s, const DecisionSettings& settings);
 
+// The grid's baselines that the paper does not run (registry: not in the paper, not a variant of
+// RAPID-RL; rlpd-sac and td3-bc), in the grid's order.
+std::vector<std::string> published_baselines(const Summary& s);
+
+// RAPID-RL against each of them in every row, on final return, by the same tests as the claims but
+// as a Holm family of its own (its comparisons only; no claim verdicts), so that adding such a
+// baseline to a grid leaves the claims' verdicts as they were. nullopt when the grid has none of
+// them, no rapid-rl, or axes.
+std::optional<Decisions> decide_published_baselines(const Summary& s, const DecisionSettings& settings);
+
 }  // namespace rapid

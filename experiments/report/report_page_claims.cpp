@@ -27,6 +27,28 @@ std::string p_text(const nlohmann::json& p) {
   return x ? short_number(x) : "—";
 }
 
+// Every comparison of a family of summary.json's (its "comparisons"); the "Wanted" column where the
+// family decides claims (the claims' family, not the published baselines').
+std::string comparisons_table(const nlohmann::json& d) {
+  const nlohmann::json comparisons = d.value("comparisons", nlohmann::json::array());
+  const bool wanted = d.contains("claims") && !d["claims"].empty();
+  std::string html = "<table class=\"numbers\"><thead><tr><th>#</th><th>Where</th><th>Metric</th><th>X vs Y</th>"
+                     "<th>X − Y</th><th>p (difference)</th><th>p (equivalence)</th><th>Outcome</th>" +
+                     std::string(wanted ? "<th>Wanted</th>" : "") + "<th>Seeds needed</th></tr></thead><tbody>\n";
+  std::size_t index = 0;
+  for (const nlohmann::json& c : comparisons) {
+    const nlohmann::json needed = c.value("seeds_needed", nlohmann::json());
+    html += "<tr><td>" + std::to_string(index++) + "</td><td>" + html_escape(c.value("where", "")) + "</td><td>" +
+            html_escape(c.value("metric", "")) + "</td><td>" + html_escape(c.value("x", "")) + " vs " +
+            html_escape(c.value("y", "")) + "</td><td>" + short_number(number(c.value("difference", nlohmann::json()))) +
+            "</td><td>" + p_text(c.value("p_difference", nlohmann::json())) + "</td><td>" +
+            p_text(c.value("p_equivalence", nlohmann::json())) + "</td><td>" + html_escape(c.value("outcome", "")) +
+            "</td>" + (wanted ? "<td>" + html_escape(c.value("wanted", "")) + "</td>" : "") + "<td>" +
+            (needed.is_number() ? needed.dump() : "—") + "</td></tr>\n";
+  }
+  return html + "</tbody></table>";
+}
+
 std::string decided(const nlohmann::json& summary) {
   if (!summary.contains("decisions")) return "";
   const nlohmann::json& d = summary["decisions"];
@@ -43,21 +65,20 @@ std::string decided(const nlohmann::json& summary) {
     html += "<tr><td>" + html_escape(c.value("id", "")) + "</td><td>" +
             html_escape(statement_of(claims, c.value("id", ""))) + "</td>" + verdict_cell(c.value("verdict", "")) +
             "<td>" + html_escape(c.value("reason", "")) + "</td></tr>\n";
-  html += "</tbody></table>\n<details><summary>The comparisons</summary>\n<table class=\"numbers\"><thead><tr><th>#</th>"
-          "<th>Where</th><th>Metric</th><th>X vs Y</th><th>X − Y</th><th>p (difference)</th><th>p (equivalence)</th>"
-          "<th>Outcome</th><th>Wanted</th><th>Seeds needed</th></tr></thead><tbody>\n";
-  std::size_t index = 0;
-  for (const nlohmann::json& c : d.value("comparisons", nlohmann::json::array())) {
-    const nlohmann::json needed = c.value("seeds_needed", nlohmann::json());
-    html += "<tr><td>" + std::to_string(index++) + "</td><td>" + html_escape(c.value("where", "")) + "</td><td>" +
-            html_escape(c.value("metric", "")) + "</td><td>" + html_escape(c.value("x", "")) + " vs " +
-            html_escape(c.value("y", "")) + "</td><td>" + short_number(number(c.value("difference", nlohmann::json()))) +
-            "</td><td>" + p_text(c.value("p_difference", nlohmann::json())) + "</td><td>" +
-            p_text(c.value("p_equivalence", nlohmann::json())) + "</td><td>" + html_escape(c.value("outcome", "")) +
-            "</td><td>" + html_escape(c.value("wanted", "")) + "</td><td>" + (needed.is_number() ? needed.dump() : "—") +
-            "</td></tr>\n";
-  }
-  return html + "</tbody></table></details>\n";
+  return html + "</tbody></table>\n<details><summary>The comparisons</summary>\n" + comparisons_table(d) + "</details>\n";
+}
+
+// RAPID-RL against the baselines the paper does not run: summary.json's "baseline_decisions", a
+// Holm family of its own (claims.md says the same).
+std::string baselines_decided(const nlohmann::json& summary) {
+  if (!summary.contains("baseline_decisions")) return "";
+  const nlohmann::json& d = summary["baseline_decisions"];
+  return "<h3>Beside the claims: RAPID-RL against the baselines the paper does not run</h3>\n<p>RAPID-RL's final "
+         "returns against each in every row, by the same tests as a family of their own: " +
+         std::to_string(d.value("family_size", 0)) + " hypotheses under Holm's procedure at α = " +
+         short_number(number(d.value("alpha_per_look", nlohmann::json()))) +
+         ", so the verdicts above are those the grid would get without these baselines.</p>\n" + comparisons_table(d) +
+         "\n";
 }
 
 // A --decide folder's looks: the verdicts at each, the seeds and cells it added, and the runs
@@ -128,7 +149,8 @@ std::string point_mean(const nlohmann::json& summary) {
 }  // namespace
 
 std::string claims_section(const ReportFolder& folder) {
-  return "<section id=\"claims\"><h2>The paper's claims</h2>\n" + decided(folder.summary) + adaptive(folder.summary) +
+  return "<section id=\"claims\"><h2>The paper's claims</h2>\n" + decided(folder.summary) +
+         baselines_decided(folder.summary) + adaptive(folder.summary) +
          point_mean(folder.summary) +
          "</section>\n";
 }

@@ -287,6 +287,7 @@ Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptio
         s.adaptive_seeds = adaptive_seeds_summary(*plan, s.cells, s.provenance);
       }
       s.decisions = decide_claims(s, *settings);
+      s.baseline_decisions = decide_published_baselines(s, *settings);
     }
   }
   return s;

@@ -202,6 +202,9 @@ struct Summary {
   std::vector<DatasetSummary> datasets;
   std::vector<ClaimResult> claims;
   std::optional<Decisions> decisions;  // where the profile has a decision rule
+  // RAPID-RL against the baselines the paper does not run, a family of its own
+  // (decide_published_baselines); where the profile has a decision rule and the grid such a baseline.
+  std::optional<Decisions> baseline_decisions;
   nlohmann::json adaptive_seeds;       // a --decide folder's looks and runs (adaptive_seeds.hpp); else null
   std::vector<std::string> warnings;  // printed by `rapid summarize`
   RunProvenance provenance;           // of the ok records

@@ -58,24 +58,27 @@ nlohmann::json cell_json(const CellSummary& c) {
 
 nlohmann::json decisions_json(const Decisions& d) {
   nlohmann::json comparisons = nlohmann::json::array();
-  for (const Comparison& c : d.comparisons)
-    comparisons.push_back({{"where", c.where},
-                           {"metric", c.metric},
-                           {"x", c.x},
-                           {"y", c.y},
-                           {"paired", c.paired},
-                           {"delta", json_number(c.delta)},
-                           {"n_x", c.xs.size()},
-                           {"n_y", c.ys.size()},
-                           {"cells", c.cells},
-                           {"difference", json_number(c.d.diff)},
-                           {"se", json_number(c.d.se)},
-                           {"df", json_number(c.d.df)},
-                           {"p_difference", json_number(c.p_difference)},
-                           {"p_equivalence", json_number(c.p_equivalence)},
-                           {"outcome", outcome_name(c.outcome)},
-                           {"wanted", outcome_name(c.wanted)},
-                           {"seeds_needed", c.seeds_needed ? nlohmann::json(*c.seeds_needed) : nlohmann::json(nullptr)}});
+  for (const Comparison& c : d.comparisons) {
+    nlohmann::json j = {{"where", c.where},
+                        {"metric", c.metric},
+                        {"x", c.x},
+                        {"y", c.y},
+                        {"paired", c.paired},
+                        {"delta", json_number(c.delta)},
+                        {"n_x", c.xs.size()},
+                        {"n_y", c.ys.size()},
+                        {"cells", c.cells},
+                        {"difference", json_number(c.d.diff)},
+                        {"se", json_number(c.d.se)},
+                        {"df", json_number(c.d.df)},
+                        {"p_difference", json_number(c.p_difference)},
+                        {"p_equivalence", json_number(c.p_equivalence)},
+                        {"outcome", outcome_name(c.outcome)},
+                        {"seeds_needed", c.seeds_needed ? nlohmann::json(*c.seeds_needed) : nlohmann::json(nullptr)}};
+    // What a claim needs of the comparison; a family without claims (the published baselines') has none.
+    if (!d.claims.empty()) j["wanted"] = outcome_name(c.wanted);
+    comparisons.push_back(std::move(j));
+  }
   nlohmann::json claims = nlohmann::json::array();
   for (const DecidedClaim& c : d.claims)
     claims.push_back({{"id", c.id}, {"verdict", c.verdict}, {"reason", c.reason}, {"comparisons", c.comparisons}});
@@ -189,6 +192,7 @@ nlohmann::json summary_to_json(const Summary& s) {
   j["claims"] = nlohmann::json::array();
   for (const ClaimResult& c : s.claims) j["claims"].push_back(claim_json(c));
   if (s.decisions) j["decisions"] = decisions_json(*s.decisions);  // absent without a decision rule
+  if (s.baseline_decisions) j["baseline_decisions"] = decisions_json(*s.baseline_decisions);
   if (!s.adaptive_seeds.is_null()) j["adaptive_seeds"] = s.adaptive_seeds;  // absent outside --decide folders
   if (!s.provenance.empty()) j["provenance"] = s.provenance.to_json();  // absent without an ok record
   return j;

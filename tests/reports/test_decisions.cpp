@@ -10,7 +10,10 @@
 #include "experiments/report/claims_markdown.hpp"
 #include "experiments/report/decide_simulation.hpp"
 #include "experiments/report/decisions.hpp"
+#include "experiments/report/report_folder.hpp"
+#include "experiments/report/report_page.hpp"
 #include "experiments/report/summarize.hpp"
+#include "experiments/report/write_reports.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
 #include "tests/reports/report_test_util.hpp"
 
@@ -30,11 +33,11 @@ class DecisionsTest : public ::testing::Test {
   std::filesystem::path sweep = scratch.path() / "sweep";
 
   Summary make(const std::function<double(const std::string& dataset, const std::string& algo)>& mean, int seeds,
-               double spread) {
+               double spread, const std::vector<std::string>& algos = kAlgos) {
     std::vector<int> seed_list;
     for (int i = 0; i < seeds; ++i) seed_list.push_back(i);
-    report_test::write_grid(sweep, report_test::make_grid("decide", {"merge"}, kDatasets, kAlgos, seed_list));
-    for (const std::string& algo : kAlgos)
+    report_test::write_grid(sweep, report_test::make_grid("decide", {"merge"}, kDatasets, algos, seed_list));
+    for (const std::string& algo : algos)
       for (const std::string& dataset : kDatasets) {
         if (algo == "ddpg" && dataset != kDatasets.front()) continue;
         for (int i = 0; i < seeds; ++i) {
@@ -90,6 +93,63 @@ TEST_F(DecisionsTest, ClearDifferencesConfirmAndRefute) {
   EXPECT_EQ(claim(same, "C2").verdict, "REFUTED") << claim(same, "C2").reason;
   for (std::size_t i : claim(same, "C2").comparisons)
     EXPECT_EQ(same.decisions->comparisons[i].outcome, ComparisonOutcome::kEquivalent);
+}
+
+// rlpd-sac and td3-bc are not the paper's: RAPID-RL is compared with them in every row as a family of
+// their own, and the claims are decided exactly as in the grid without them.
+TEST_F(DecisionsTest, PublishedBaselinesAreAFamilyOfTheirOwnAndLeaveTheClaimsAsTheyWere) {
+  const auto mean = [](const std::string& dataset, const std::string& algo) {
+    if (algo == "rapid-rl") return 200.0;
+    if (algo == "rlpd-sac") return 240.0;  // > 3δ above RAPID-RL
+    if (algo == "td3-bc") return 201.0;    // within δ = 11.8
+    if (algo == "col-prior") return dataset == "initial" ? 150.0 : 165.0;
+    return algo == "col-all" ? 120.0 : 160.0;
+  };
+  const Summary paper = make(mean, 10, 2.0);
+  EXPECT_FALSE(paper.baseline_decisions.has_value()) << "no baseline the paper does not run";
+  std::vector<std::string> algos = kAlgos;
+  algos.insert(algos.end(), {"rlpd-sac", "td3-bc"});
+  const Summary s = make(mean, 10, 2.0, algos);
+  ASSERT_TRUE(s.decisions.has_value() && s.baseline_decisions.has_value());
+
+  // The claims: the same family, the same p values, the same verdicts.
+  EXPECT_EQ(s.decisions->family_size, paper.decisions->family_size);
+  ASSERT_EQ(s.decisions->comparisons.size(), paper.decisions->comparisons.size());
+  for (std::size_t i = 0; i < s.decisions->comparisons.size(); ++i) {
+    const double p = s.decisions->comparisons[i].p_difference, q = paper.decisions->comparisons[i].p_difference;
+    EXPECT_TRUE(p == q || (std::isnan(p) && std::isnan(q))) << i << ": " << p << " vs " << q;  // C6 has no BC data: NaN
+  }
+  for (const DecidedClaim& c : paper.decisions->claims) EXPECT_EQ(claim(s, c.id).verdict, c.verdict) << c.id;
+
+  // The baselines' family: 2 rows × 2 baselines, a difference and an equivalence test each.
+  const Decisions& b = *s.baseline_decisions;
+  EXPECT_EQ(b.family_size, 8);
+  EXPECT_TRUE(b.claims.empty());
+  ASSERT_EQ(b.comparisons.size(), 4u);
+  for (const Comparison& c : b.comparisons) {
+    EXPECT_EQ(c.x, "RAPID-RL");
+    EXPECT_EQ(c.xs.size(), 10u);
+    EXPECT_EQ(c.outcome, c.y == "RLPD (SAC)" ? ComparisonOutcome::kYBetter : ComparisonOutcome::kEquivalent)
+        << c.where << " " << c.y;
+  }
+  const std::string md = claims_markdown(s);
+  EXPECT_NE(md.find("## Beside the claims: RAPID-RL against RLPD (SAC), TD3+BC"), std::string::npos) << md;
+  EXPECT_NE(md.find("8 hypotheses under Holm's procedure at α = 0.05"), std::string::npos) << md;
+  EXPECT_NE(md.find("| RLPD (SAC) | 2 | 0 | 2 | 0 | 0 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| TD3+BC | 2 | 0 | 0 | 2 | 0 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| merge / initial | final return | RAPID-RL vs RLPD (SAC) | 10 / 10 | -40 |"), std::string::npos) << md;
+  EXPECT_EQ(claims_markdown(paper).find("Beside the claims"), std::string::npos);
+
+  // summary.json and report.html carry it; its comparisons have no "wanted", the claims' do.
+  write_reports(s, sweep, std::cout);
+  const nlohmann::json j = report_test::read_json(sweep / "summary.json");
+  ASSERT_TRUE(j.contains("baseline_decisions"));
+  EXPECT_EQ(j["baseline_decisions"]["comparisons"].size(), 4u);
+  EXPECT_FALSE(j["baseline_decisions"]["comparisons"][0].contains("wanted"));
+  EXPECT_TRUE(j["decisions"]["comparisons"][0].contains("wanted"));
+  const std::string page = report_page_html(read_report_folder(sweep, sweep));
+  EXPECT_NE(page.find("against the baselines the paper does not run</h3>"), std::string::npos);
+  EXPECT_NE(page.find("RAPID-RL vs RLPD (SAC)</td><td>-40</td>"), std::string::npos);
 }
 
 TEST_F(DecisionsTest, TooFewOrTooNoisySeedsLeaveAClaimUndecidedWithTheSeedsItNeeds) {
