@@ -223,4 +223,10 @@ std::vector<ClaimResult> check_claims(const Summary& s) {
   return out;
 }
 
+const ClaimResult* point_mean_claim(const Summary& summary, const std::string& id) {
+  for (const ClaimResult& c : summary.claims)
+    if (c.id == id) return &c;
+  return nullptr;
+}
+
 }  // namespace rapid

@@ -23,4 +23,7 @@ namespace rapid {
 
 std::vector<ClaimResult> check_claims(const Summary& summary);
 
+// The point-mean result of claim `id` in summary.claims, or nullptr.
+const ClaimResult* point_mean_claim(const Summary& summary, const std::string& id);
+
 }  // namespace rapid

@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <numeric>
 #include <sstream>
 
 #include "algos/registry.hpp"
 #include "core/printable.hpp"
 #include "experiments/report/adaptive_seeds.hpp"
+#include "experiments/report/claims.hpp"
 #include "experiments/report/decisions.hpp"
 #include "experiments/report/format.hpp"
 
@@ -105,8 +105,9 @@ std::string comparisons_table(const Decisions& d, const std::vector<std::size_t>
 std::string baseline_decisions_markdown(const Summary& s) {
   if (!s.baseline_decisions) return "";
   const Decisions& d = *s.baseline_decisions;
+  const std::vector<BaselineTally> tallies = tally_published_baselines(s);
   std::vector<std::string> names;
-  for (const std::string& algo : published_baselines(s)) names.push_back(algo_display_name(algo));
+  for (const BaselineTally& t : tallies) names.push_back(t.name);
   std::ostringstream out;
   out << "\n## Beside the claims: RAPID-RL against " << comma_joined(names)
       << "\n\nBaselines the paper does not run. RAPID-RL's final returns against each in every row, by the claims' tests "
@@ -115,28 +116,13 @@ std::string baseline_decisions_markdown(const Summary& s) {
       << ", apart from the claims' family, so the claims' verdicts above are those the grid would get without these "
          "baselines. \"Seeds to resolve\" as above.\n\n"
       << "| baseline | rows | RAPID-RL higher | baseline higher | within ±δ | undecided |\n|---|---:|---:|---:|---:|---:|\n";
-  for (const std::string& name : names) {
-    std::map<ComparisonOutcome, int> count;
-    int rows = 0;
-    for (const Comparison& c : d.comparisons)
-      if (c.y == name) {
-        ++rows;
-        ++count[c.outcome];
-      }
-    out << "| " << name << " | " << rows << " | " << count[ComparisonOutcome::kXBetter] << " | "
-        << count[ComparisonOutcome::kYBetter] << " | " << count[ComparisonOutcome::kEquivalent] << " | "
-        << count[ComparisonOutcome::kUndecided] << " |\n";
-  }
+  for (const BaselineTally& t : tallies)
+    out << "| " << t.name << " | " << t.rows << " | " << t.rapid_rl_higher << " | " << t.baseline_higher << " | "
+        << t.equivalent << " | " << t.undecided << " |\n";
   std::vector<std::size_t> all(d.comparisons.size());
   std::iota(all.begin(), all.end(), std::size_t{0});
   out << "\n" << comparisons_table(d, all, /*claim_column=*/false);
   return out.str();
-}
-
-const ClaimResult* point_mean(const Summary& s, const std::string& id) {
-  for (const ClaimResult& c : s.claims)
-    if (c.id == id) return &c;
-  return nullptr;
 }
 
 // claims.md with decided verdicts, the point-mean ones beside them.
@@ -146,11 +132,11 @@ std::string decided_claims_markdown(const Summary& s) {
   out << "# Claims decided — grid `" << s.grid.name << "`\n\n" << decided_intro(d) << non_paper_note(s)
       << "| Claim | Verdict | Why | Point-mean verdict |\n|---|---|---|---|\n";
   for (const DecidedClaim& c : d.claims) {
-    const ClaimResult* pm = point_mean(s, c.id);
+    const ClaimResult* pm = point_mean_claim(s, c.id);
     out << "| " << c.id << " | " << c.verdict << " | " << c.reason << " | " << (pm ? pm->verdict : "—") << " |\n";
   }
   for (const DecidedClaim& c : d.claims) {
-    const ClaimResult* pm = point_mean(s, c.id);
+    const ClaimResult* pm = point_mean_claim(s, c.id);
     out << "\n## " << c.id << ": " << c.verdict << "\n\n";
     if (pm) out << "Claim: " << pm->statement << "\n\n";
     out << "Decided: " << c.reason << ".\n";

@@ -361,4 +361,25 @@ std::optional<Decisions> decide_published_baselines(const Summary& s, const Deci
   return b.finish({});
 }
 
+std::vector<BaselineTally> tally_published_baselines(const Summary& s) {
+  std::vector<BaselineTally> out;
+  if (!s.baseline_decisions) return out;
+  for (const std::string& algo : published_baselines(s)) {
+    BaselineTally t;
+    t.name = algo_display_name(algo);
+    for (const Comparison& c : s.baseline_decisions->comparisons) {
+      if (c.y != t.name) continue;
+      ++t.rows;
+      switch (c.outcome) {
+        case ComparisonOutcome::kXBetter: ++t.rapid_rl_higher; break;
+        case ComparisonOutcome::kYBetter: ++t.baseline_higher; break;
+        case ComparisonOutcome::kEquivalent: ++t.equivalent; break;
+        case ComparisonOutcome::kUndecided: ++t.undecided; break;
+      }
+    }
+    out.push_back(t);
+  }
+  return out;
+}
+
 }  // namespace rapid

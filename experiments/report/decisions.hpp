@@ -31,4 +31,12 @@ std::vector<std::string> published_baselines(const Summary& s);
 // them, no rapid-rl, or axes.
 std::optional<Decisions> decide_published_baselines(const Summary& s, const DecisionSettings& settings);
 
+// Per published baseline (display name, in the grid's order), how many rows each outcome of RAPID-RL
+// against it took in s.baseline_decisions; empty without them.
+struct BaselineTally {
+  std::string name;
+  int rows = 0, rapid_rl_higher = 0, baseline_higher = 0, equivalent = 0, undecided = 0;
+};
+std::vector<BaselineTally> tally_published_baselines(const Summary& s);
+
 }  // namespace rapid

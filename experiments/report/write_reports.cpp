@@ -3,7 +3,9 @@
 #include <iostream>
 
 #include "core/atomic_file.hpp"
+#include "experiments/report/claims.hpp"
 #include "experiments/report/claims_markdown.hpp"
+#include "experiments/report/decisions.hpp"
 #include "experiments/report/interruption.hpp"
 #include "experiments/report/plot.hpp"
 #include "experiments/report/tables.hpp"
@@ -29,7 +31,20 @@ void write_reports(const Summary& summary, const fs::path& out_dir, std::ostream
   out << "summarized " << summary.cells.size() << " cells (" << ok << "/" << expected << " runs ok) into "
       << out_dir.string() << ": table.md table.tex table.csv runs.csv summary.json claims.md\n";
   for (const std::string& w : summary.warnings) out << "warning: " << w << "\n";
-  for (const ClaimResult& c : summary.claims) out << "  " << c.id << " " << c.verdict << ": " << c.reason << "\n";
+  if (!summary.decisions) {
+    for (const ClaimResult& c : summary.claims) out << "  " << c.id << " " << c.verdict << ": " << c.reason << "\n";
+    return;
+  }
+  // The verdict is the decided one; the point-mean one is named as what it is.
+  for (const DecidedClaim& c : summary.decisions->claims) {
+    const ClaimResult* pm = point_mean_claim(summary, c.id);
+    out << "  " << c.id << " " << c.verdict << ": " << c.reason
+        << (pm ? " (point means, not a decision: " + pm->verdict + ")" : "") << "\n";
+  }
+  for (const BaselineTally& t : tally_published_baselines(summary))
+    out << "  RAPID-RL vs " << t.name << ", " << t.rows << " rows: RAPID-RL higher in " << t.rapid_rl_higher << ", "
+        << t.name << " higher in " << t.baseline_higher << ", within ±δ in " << t.equivalent << ", undecided in "
+        << t.undecided << "\n";
 }
 
 FiguresResult draw_figures(const fs::path& out_dir, std::ostream& out) {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <sstream>
 
 #include "core/rng.hpp"
 #include "experiments/report/claims_markdown.hpp"
@@ -141,7 +142,18 @@ TEST_F(DecisionsTest, PublishedBaselinesAreAFamilyOfTheirOwnAndLeaveTheClaimsAsT
   EXPECT_EQ(claims_markdown(paper).find("Beside the claims"), std::string::npos);
 
   // summary.json and report.html carry it; its comparisons have no "wanted", the claims' do.
-  write_reports(s, sweep, std::cout);
+  std::ostringstream said;
+  write_reports(s, sweep, said);
+  // What rapid summarize prints: the decided verdicts, the point-mean ones named, the baselines' counts.
+  EXPECT_NE(said.str().find("  C2 CONFIRMED: 2 of 2 hold as decided"), std::string::npos) << said.str();
+  EXPECT_NE(said.str().find("(point means, not a decision: PASS)"), std::string::npos) << said.str();
+  EXPECT_NE(said.str().find("  RAPID-RL vs RLPD (SAC), 2 rows: RAPID-RL higher in 0, RLPD (SAC) higher in 2, "
+                            "within ±δ in 0, undecided in 0\n"),
+            std::string::npos)
+      << said.str();
+  EXPECT_NE(said.str().find("  RAPID-RL vs TD3+BC, 2 rows: RAPID-RL higher in 0, TD3+BC higher in 0, within ±δ in 2"),
+            std::string::npos)
+      << said.str();
   const nlohmann::json j = report_test::read_json(sweep / "summary.json");
   ASSERT_TRUE(j.contains("baseline_decisions"));
   EXPECT_EQ(j["baseline_decisions"]["comparisons"].size(), 4u);
