@@ -18,6 +18,8 @@ LoadedRecord load_cell_record(const SweepFolder& folder, const SweepJob& cell) {
   out.result.final_return = final["return_mean"].get<double>();
   if (final.contains("episodes") && final["episodes"].is_number_integer())
     out.result.final_episodes = final["episodes"].get<int>();
+  if (const auto& timing = (*r.record)["timing"]; timing.is_object() && timing.contains("wall_s") && timing["wall_s"].is_number())
+    out.result.wall_s = timing["wall_s"].get<double>();
   out.record = std::move(r.record);
   return out;
 }

@@ -39,6 +39,7 @@ struct SeedResult {
   std::vector<std::pair<double, double>> eval;
   // Its BC-loss log: (step, prior, online), NaN where a loss is null (decided claim C6).
   std::vector<std::tuple<double, double, double>> bc_loss;
+  std::optional<double> wall_s;  // what an ok run took, start to end (its record's timing.wall_s)
 };
 
 // A curve averaged over the ok seeds at each step; n = how many seeds had a point there.

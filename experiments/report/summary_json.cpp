@@ -27,7 +27,8 @@ nlohmann::json cell_json(const CellSummary& c) {
   nlohmann::json seeds = nlohmann::json::array();
   for (const SeedResult& r : c.seeds)
     seeds.push_back({{"seed", r.seed}, {"status", r.status}, {"final", json_number(r.final_return)},
-                     {"error", r.error.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.error)}});
+                     {"error", r.error.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.error)},
+                     {"wall_s", json_number(r.wall_s)}});
   nlohmann::json j = {{"scenario", c.scenario},
           {"dataset", dataset_name(c.dataset)},
           {"algo", c.algo},

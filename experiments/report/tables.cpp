@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 #include <sstream>
 
 #include "algos/registry.hpp"
+#include "core/statistics.hpp"
 #include "experiments/report/format.hpp"
 
 namespace rapid {
@@ -162,6 +164,49 @@ std::string end_of_training_markdown(const Summary& s) {
   return out.str();
 }
 
+// What the runs cost, per scenario and algorithm: the median wall time of one ok run (robust to the
+// few runs a busy machine slowed down) with its range, then all ok runs in core-hours. Empty when no
+// record says its time.
+std::string run_cost_markdown(const Summary& s) {
+  const std::vector<std::string> algos = columns(s);
+  std::map<std::pair<std::string, std::string>, std::vector<double>> walls;  // (scenario, algo) → seconds
+  std::map<std::string, double> total_s;
+  for (const CellSummary& c : s.cells)
+    for (const SeedResult& r : c.seeds)
+      if (r.final_return && r.wall_s) {
+        walls[{c.scenario, c.algo}].push_back(*r.wall_s);
+        total_s[c.algo] += *r.wall_s;
+      }
+  if (walls.empty()) return "";
+  std::ostringstream out;
+  out << "\n## What a run cost\n\nWall time of one ok run in seconds, start to end (training and evaluation): "
+         "the median over the scenario's cells and seeds, [fastest, slowest]. The time includes whatever else the "
+         "machine ran (summary.json's provenance names the machines). Last, the table's ok runs summed, in hours of "
+         "one process each (a local sweep gives each of its workers an equal share of the cores).\n\n| Scenario |";
+  for (const std::string& a : algos) out << " " << algo_display_name(a) << " |";
+  out << "\n|---|";
+  for (std::size_t i = 0; i < algos.size(); ++i) out << "---:|";
+  out << "\n";
+  for (const std::string& scenario : s.grid.scenarios) {
+    out << "| " << scenario_display_name(scenario) << " |";
+    for (const std::string& a : algos) {
+      const auto it = walls.find({scenario, a});
+      if (it == walls.end()) {
+        out << " — |";
+        continue;
+      }
+      const auto [lo, hi] = std::minmax_element(it->second.begin(), it->second.end());
+      const auto seconds = [](double x) { return fixed(x, x < 10.0 ? 1 : 0); };
+      out << " " << seconds(quantile(it->second, 0.5)) << " [" << seconds(*lo) << ", " << seconds(*hi) << "] |";
+    }
+    out << "\n";
+  }
+  out << "| All ok runs, hours |";
+  for (const std::string& a : algos) out << " " << (total_s.count(a) ? short_number(total_s[a] / 3600.0) : "—") << " |";
+  out << "\n";
+  return out.str();
+}
+
 // What a run's final return is: its final evaluation (flow profile) or its last evaluations' mean.
 std::string final_return_text(const Summary& s) {
   std::set<int> episodes;
@@ -249,6 +294,7 @@ std::string table_markdown(const Summary& s) {
       out << "| " << algo_display_name(a.algo) << " | " << fixed(a.iqm, decimals) << " | [" << fixed(a.ci.lo, decimals)
           << ", " << fixed(a.ci.hi, decimals) << "] | " << a.n_runs << " | " << a.n_cells << " |\n";
   }
+  out << run_cost_markdown(s);
   return out.str();
 }
 

@@ -78,7 +78,7 @@ void write_run(const fs::path& sweep, const FakeRun& run, const std::string& has
       {"bc_loss", bc},
       {"losses", losses},
       {"final", {{"return_mean", ok ? nlohmann::json(run.final_return) : nlohmann::json(nullptr)}, {"return_std", 0.0}, {"last_k", 2}}},
-      {"timing", nlohmann::json::object()}};
+      {"timing", run.wall_s < 0 ? nlohmann::json::object() : nlohmann::json{{"wall_s", run.wall_s}}}};
   write_text(record_path(sweep, run.scenario, run.dataset, run.algo, run.seed), record.dump(1));
 }
 

@@ -29,6 +29,7 @@ struct FakeRun {
   std::vector<CurvePoint> q;            // step → the critic's q_mean (losses)
   double collision_rate = 0.0;          // at every evaluation
   double epsilon = -0.5;
+  double wall_s = -1.0;                 // timing.wall_s; negative: the record says no time
 };
 
 // A pendulum run whose evaluation curve rises linearly to `final` (0, final/2, final at steps 0,

@@ -198,6 +198,45 @@ TEST_F(SummaryTest, EndOfTrainingShowsCollisionsQAndImitationErrors) {
   EXPECT_DOUBLE_EQ((*cell)["collision_curve"]["mean"].back().get<double>(), 0.3);
 }
 
+// What a run cost, from its record's timing: per scenario and algorithm the median over every cell's
+// ok seeds with the fastest and slowest, then the ok runs summed; a failed run and a record without a
+// time do not count.
+TEST_F(SummaryTest, WhatARunCostIsTheMedianWallTimeOfTheOkRuns) {
+  const auto timed = [&](const std::string& dataset, const std::string& algo, std::uint64_t seed, double wall_s,
+                         const std::string& status = "ok") {
+    FakeRun r = report_test::pendulum_run(dataset, algo, seed, 10.0, status);
+    r.wall_s = wall_s;
+    report_test::write_run(sweep, r);
+  };
+  timed("initial", "rapid-rl", 0, 10.0);
+  timed("initial", "rapid-rl", 1, 30.0);
+  timed("initial", "rapid-rl", 2, 20.0);
+  timed("final+medium", "rapid-rl", 0, 100.0);  // the median is over both datasets' cells: 25
+  timed("initial", "rlpd", 0, 7.5);
+  timed("initial", "rlpd", 1, 1000.0, "failed");
+  timed("", "ddpg", 0, -1.0);  // no time in its record
+  SummaryOptions options;
+  options.claims = false;
+  const Summary s = build_summary(sweep, options);
+  const std::string md = table_markdown(s);
+  EXPECT_NE(md.find("## What a run cost"), std::string::npos) << md;
+  EXPECT_NE(md.find("| Scenario | RAPID-RL | RLPD | DDPG |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| Pendulum | 25 [10, 100] | 7.5 [7.5, 7.5] | — |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| All ok runs, hours | 0.04444 | 0.002083 | — |"), std::string::npos) << md;
+  const nlohmann::json j = summary_to_json(s);
+  const auto cell = std::find_if(j["cells"].begin(), j["cells"].end(), [](const nlohmann::json& c) {
+    return c["dataset"] == "initial" && c["algo"] == "rlpd";
+  });
+  ASSERT_NE(cell, j["cells"].end());
+  EXPECT_EQ((*cell)["seeds"][0]["wall_s"], 7.5);
+  EXPECT_TRUE((*cell)["seeds"][1]["wall_s"].is_null()) << "a failed run's time is not a run's cost";
+
+  // Records that do not say their time: no section.
+  report_test::write_grid(sweep, report_test::make_grid("untimed", {"pendulum"}, {"initial"}, {"rapid-rl"}, {0}));
+  timed("initial", "rapid-rl", 0, -1.0);
+  EXPECT_EQ(table_markdown(build_summary(sweep, options)).find("What a run cost"), std::string::npos);
+}
+
 // An axis the reference reads (gamma: no algorithm owns it) gives each of its values its own
 // reference and datasets under datasets/<point>/; the summary reads them there, one entry per
 // point, sharing the histogram's bins, and names the one that is missing.
