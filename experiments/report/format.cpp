@@ -26,6 +26,8 @@ std::string short_number(std::optional<double> x) {
   return buf;
 }
 
+std::string seconds_text(double seconds) { return fixed(seconds, seconds < 10.0 ? 1 : 0); }
+
 std::string exact_number(std::optional<double> x) {
   if (!x || std::isnan(*x)) return "";
   char buf[64];

@@ -11,6 +11,8 @@ namespace rapid {
 std::string fixed(double x, int decimals);
 // Four significant digits for claim tables ("939.7", "0.01234", "1.235e+05"); "—" for nullopt/NaN.
 std::string short_number(std::optional<double> x);
+// A run's wall time in seconds: a tenth below ten seconds, whole seconds above ("7.5", "138").
+std::string seconds_text(double seconds);
 // Shortest text that reads back as the same double (CSV, machine use); empty for nullopt/NaN.
 std::string exact_number(std::optional<double> x);
 

@@ -114,6 +114,42 @@ std::string iqm_table(const ReportFolder& folder) {
   return html + "</tbody></table>\n";
 }
 
+// summary.json's "run_costs" (absent before summaries had them): per scenario the median wall time of
+// an algorithm's ok run with its range, as table.md's "What a run cost".
+std::string run_cost_table(const ReportFolder& folder) {
+  const nlohmann::json costs = folder.summary.value("run_costs", nlohmann::json::array());
+  if (costs.empty()) return "";
+  const auto has_cost = [&](const std::string& key, const std::string& value) {
+    return std::any_of(costs.begin(), costs.end(), [&](const nlohmann::json& c) { return c.value(key, "") == value; });
+  };
+  std::vector<std::string> algos, scenarios;  // Table I's columns and the grid's scenarios that have a cost
+  for (const std::string& a : table_columns(folder.summary))
+    if (has_cost("algo", a)) algos.push_back(a);
+  for (const std::string& sc : folder.summary["grid"].value("scenarios", std::vector<std::string>{}))
+    if (has_cost("scenario", sc)) scenarios.push_back(sc);
+  std::vector<std::string> columns = {"Scenario"};
+  for (const std::string& a : algos) columns.push_back(algo_display_name(a));
+  std::string html =
+      "<h3>What a run cost</h3>\n<p>Wall time of one ok run in seconds, start to end: the median over the "
+      "scenario's cells and seeds, [fastest, slowest], with whatever else the machine ran.</p>\n"
+      "<table class=\"numbers\" id=\"run-cost-table\">" + header(columns) + "<tbody>\n";
+  for (const std::string& scenario : scenarios) {
+    html += "<tr><td>" + html_escape(scenario_display_name(scenario)) + "</td>";
+    for (const std::string& a : algos) {
+      const auto it = std::find_if(costs.begin(), costs.end(), [&](const nlohmann::json& c) {
+        return c.value("scenario", "") == scenario && c.value("algo", "") == a;
+      });
+      html += "<td>" + (it == costs.end() ? std::string("—")
+                                          : seconds_text(it->value("median_s", 0.0)) + " [" +
+                                                seconds_text(it->value("min_s", 0.0)) + ", " +
+                                                seconds_text(it->value("max_s", 0.0)) + "]") +
+              "</td>";
+    }
+    html += "</tr>\n";
+  }
+  return html + "</tbody></table>\n";
+}
+
 }  // namespace
 
 std::string tables_section(const ReportFolder& folder) {
@@ -126,7 +162,7 @@ std::string tables_section(const ReportFolder& folder) {
          "Mann–Whitney U / (n<sub>X</sub>·n<sub>Y</sub>), ties count half; 95% interval from a stratified bootstrap. "
          "RAPID-RL against each of the paper's baselines, and each variant the paper does not have against "
          "RAPID-RL.</p>\n" +
-         poi_table(folder) + iqm_table(folder) + "</section>\n";
+         poi_table(folder) + iqm_table(folder) + run_cost_table(folder) + "</section>\n";
 }
 
 }  // namespace rapid::report_page

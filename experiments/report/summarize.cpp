@@ -218,6 +218,28 @@ void build_aggregate(Summary& s) {
   }
 }
 
+// What the runs cost (RunCost), per scenario and algorithm over every cell's timed ok seeds.
+void build_run_costs(Summary& s) {
+  for (const std::string& scenario : s.grid.scenarios)
+    for (const std::string& algo : ordered_algos(s.grid)) {
+      std::vector<double> walls;
+      for (const CellSummary& c : s.cells)
+        if (c.scenario == scenario && c.algo == algo)
+          for (const SeedResult& r : c.seeds)
+            if (r.final_return && r.wall_s) walls.push_back(*r.wall_s);
+      if (walls.empty()) continue;
+      RunCost cost;
+      cost.scenario = scenario;
+      cost.algo = algo;
+      cost.n_runs = static_cast<int>(walls.size());
+      cost.min_s = *std::min_element(walls.begin(), walls.end());
+      cost.max_s = *std::max_element(walls.begin(), walls.end());
+      for (double w : walls) cost.total_s += w;
+      cost.median_s = quantile(std::move(walls), 0.5);
+      s.run_costs.push_back(cost);
+    }
+}
+
 }  // namespace
 
 Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptions& options) {
@@ -268,6 +290,7 @@ Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptio
   build_rows(s);
   build_poi(s);
   build_aggregate(s);
+  build_run_costs(s);
   build_sensitivity(s);
   if (options.dataset_stats) {
     s.datasets = summarize_datasets(folder);

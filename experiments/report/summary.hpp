@@ -106,6 +106,15 @@ struct AggregateEntry {
   int n_runs = 0, n_cells = 0;
 };
 
+// What an algorithm's ok runs took in one scenario (wall time, start to end, from the records'
+// timing.wall_s): the median over all its cells and seeds there, the fastest and the slowest.
+struct RunCost {
+  std::string scenario, algo;
+  double median_s = 0.0, min_s = 0.0, max_s = 0.0;
+  int n_runs = 0;
+  double total_s = 0.0;  // the runs summed
+};
+
 struct DatasetSummary {
   std::string scenario, dataset;
   std::string point;       // the reference point's label ("gamma=0.9"); empty without reference axes
@@ -197,6 +206,7 @@ struct Summary {
   std::vector<TableRow> rows;
   std::vector<PoiEntry> poi;       // P(rapid-rl > baseline) per row
   std::vector<AggregateEntry> aggregate;  // grids without axes only (it would pool axis values)
+  std::vector<RunCost> run_costs;         // per scenario × algorithm with a timed ok run, table order
   std::vector<SensitivityLine> sensitivity;  // grids with axes
   std::map<std::string, double> epsilon;  // per scenario
   std::map<std::string, nlohmann::json> reference;  // per scenario: the reference agent's final result

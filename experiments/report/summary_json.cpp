@@ -171,6 +171,13 @@ nlohmann::json summary_to_json(const Summary& s) {
     j["aggregate_iqm"].push_back({{"algo", a.algo}, {"iqm", a.iqm}, {"ci", {a.ci.lo, a.ci.hi}},
                                   {"n_runs", a.n_runs}, {"n_cells", a.n_cells}});
 
+  if (!s.run_costs.empty()) {  // absent where no record says its time (summaries before it)
+    j["run_costs"] = nlohmann::json::array();
+    for (const RunCost& c : s.run_costs)
+      j["run_costs"].push_back({{"scenario", c.scenario}, {"algo", c.algo}, {"median_s", c.median_s}, {"min_s", c.min_s},
+                                {"max_s", c.max_s}, {"n_runs", c.n_runs}, {"total_s", c.total_s}});
+  }
+
   nlohmann::json scenarios = nlohmann::json::object();
   for (const std::string& scenario : s.grid.scenarios) {
     nlohmann::json entry = {{"epsilon", s.epsilon.count(scenario) ? nlohmann::json(s.epsilon.at(scenario)) : nlohmann::json(nullptr)},

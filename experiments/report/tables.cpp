@@ -7,7 +7,6 @@
 #include <sstream>
 
 #include "algos/registry.hpp"
-#include "core/statistics.hpp"
 #include "experiments/report/format.hpp"
 
 namespace rapid {
@@ -164,20 +163,13 @@ std::string end_of_training_markdown(const Summary& s) {
   return out.str();
 }
 
-// What the runs cost, per scenario and algorithm: the median wall time of one ok run (robust to the
-// few runs a busy machine slowed down) with its range, then all ok runs in core-hours. Empty when no
-// record says its time.
+// What the runs cost (s.run_costs): per scenario the median wall time of an algorithm's ok run with
+// its range, then each algorithm's ok runs summed. Empty when no record says its time.
 std::string run_cost_markdown(const Summary& s) {
+  if (s.run_costs.empty()) return "";
   const std::vector<std::string> algos = columns(s);
-  std::map<std::pair<std::string, std::string>, std::vector<double>> walls;  // (scenario, algo) → seconds
   std::map<std::string, double> total_s;
-  for (const CellSummary& c : s.cells)
-    for (const SeedResult& r : c.seeds)
-      if (r.final_return && r.wall_s) {
-        walls[{c.scenario, c.algo}].push_back(*r.wall_s);
-        total_s[c.algo] += *r.wall_s;
-      }
-  if (walls.empty()) return "";
+  for (const RunCost& c : s.run_costs) total_s[c.algo] += c.total_s;
   std::ostringstream out;
   out << "\n## What a run cost\n\nWall time of one ok run in seconds, start to end (training and evaluation): "
          "the median over the scenario's cells and seeds, [fastest, slowest]. The time includes whatever else the "
@@ -190,14 +182,13 @@ std::string run_cost_markdown(const Summary& s) {
   for (const std::string& scenario : s.grid.scenarios) {
     out << "| " << scenario_display_name(scenario) << " |";
     for (const std::string& a : algos) {
-      const auto it = walls.find({scenario, a});
-      if (it == walls.end()) {
-        out << " — |";
-        continue;
-      }
-      const auto [lo, hi] = std::minmax_element(it->second.begin(), it->second.end());
-      const auto seconds = [](double x) { return fixed(x, x < 10.0 ? 1 : 0); };
-      out << " " << seconds(quantile(it->second, 0.5)) << " [" << seconds(*lo) << ", " << seconds(*hi) << "] |";
+      const auto it = std::find_if(s.run_costs.begin(), s.run_costs.end(),
+                                   [&](const RunCost& c) { return c.scenario == scenario && c.algo == a; });
+      out << " "
+          << (it == s.run_costs.end() ? "—"
+                                      : seconds_text(it->median_s) + " [" + seconds_text(it->min_s) + ", " +
+                                            seconds_text(it->max_s) + "]")
+          << " |";
     }
     out << "\n";
   }

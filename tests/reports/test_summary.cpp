@@ -4,13 +4,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 
 #include "algos/registry.hpp"
 #include "core/dataset_io.hpp"
 #include "core/statistics.hpp"
 #include "experiments/report/claims_markdown.hpp"
+#include "experiments/report/report_folder.hpp"
+#include "experiments/report/report_page.hpp"
 #include "experiments/report/summarize.hpp"
 #include "experiments/report/tables.hpp"
+#include "experiments/report/write_reports.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
 #include "tests/reports/report_test_util.hpp"
 
@@ -230,6 +234,14 @@ TEST_F(SummaryTest, WhatARunCostIsTheMedianWallTimeOfTheOkRuns) {
   ASSERT_NE(cell, j["cells"].end());
   EXPECT_EQ((*cell)["seeds"][0]["wall_s"], 7.5);
   EXPECT_TRUE((*cell)["seeds"][1]["wall_s"].is_null()) << "a failed run's time is not a run's cost";
+  ASSERT_EQ(j["run_costs"].size(), 2u) << j["run_costs"];
+  EXPECT_EQ(j["run_costs"][0], (nlohmann::json{{"scenario", "pendulum"}, {"algo", "rapid-rl"}, {"median_s", 25.0},
+                                               {"min_s", 10.0}, {"max_s", 100.0}, {"n_runs", 4}, {"total_s", 160.0}}));
+  // report.html shows the same numbers.
+  write_reports(s, sweep, std::cout);
+  const std::string page = report_page_html(read_report_folder(sweep, sweep));
+  EXPECT_NE(page.find("<tr><td>Pendulum</td><td>25 [10, 100]</td><td>7.5 [7.5, 7.5]</td></tr>"), std::string::npos)
+      << "DDPG has no timed run: no column";
 
   // Records that do not say their time: no section.
   report_test::write_grid(sweep, report_test::make_grid("untimed", {"pendulum"}, {"initial"}, {"rapid-rl"}, {0}));
