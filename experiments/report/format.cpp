@@ -26,7 +26,10 @@ std::string short_number(std::optional<double> x) {
   return buf;
 }
 
-std::string seconds_text(double seconds) { return fixed(seconds, seconds < 10.0 ? 1 : 0); }
+std::string run_cost_text(double median_s, double min_s, double max_s) {
+  const auto seconds = [](double x) { return fixed(x, x < 10.0 ? 1 : 0); };
+  return seconds(median_s) + " [" + seconds(min_s) + ", " + seconds(max_s) + "]";
+}
 
 std::string exact_number(std::optional<double> x) {
   if (!x || std::isnan(*x)) return "";

@@ -11,8 +11,9 @@ namespace rapid {
 std::string fixed(double x, int decimals);
 // Four significant digits for claim tables ("939.7", "0.01234", "1.235e+05"); "—" for nullopt/NaN.
 std::string short_number(std::optional<double> x);
-// A run's wall time in seconds: a tenth below ten seconds, whole seconds above ("7.5", "138").
-std::string seconds_text(double seconds);
+// What a run cost, as table.md and report.html spell it: the median wall time in seconds and the
+// [fastest, slowest], a tenth below ten seconds and whole seconds above ("25 [7.5, 138]").
+std::string run_cost_text(double median_s, double min_s, double max_s);
 // Shortest text that reads back as the same double (CSV, machine use); empty for nullopt/NaN.
 std::string exact_number(std::optional<double> x);
 

@@ -139,10 +139,9 @@ std::string run_cost_table(const ReportFolder& folder) {
       const auto it = std::find_if(costs.begin(), costs.end(), [&](const nlohmann::json& c) {
         return c.value("scenario", "") == scenario && c.value("algo", "") == a;
       });
-      html += "<td>" + (it == costs.end() ? std::string("—")
-                                          : seconds_text(it->value("median_s", 0.0)) + " [" +
-                                                seconds_text(it->value("min_s", 0.0)) + ", " +
-                                                seconds_text(it->value("max_s", 0.0)) + "]") +
+      html += "<td>" +
+              (it == costs.end() ? std::string("—")
+                                 : run_cost_text(it->value("median_s", 0.0), it->value("min_s", 0.0), it->value("max_s", 0.0))) +
               "</td>";
     }
     html += "</tr>\n";

@@ -184,11 +184,7 @@ std::string run_cost_markdown(const Summary& s) {
     for (const std::string& a : algos) {
       const auto it = std::find_if(s.run_costs.begin(), s.run_costs.end(),
                                    [&](const RunCost& c) { return c.scenario == scenario && c.algo == a; });
-      out << " "
-          << (it == s.run_costs.end() ? "—"
-                                      : seconds_text(it->median_s) + " [" + seconds_text(it->min_s) + ", " +
-                                            seconds_text(it->max_s) + "]")
-          << " |";
+      out << " " << (it == s.run_costs.end() ? "—" : run_cost_text(it->median_s, it->min_s, it->max_s)) << " |";
     }
     out << "\n";
   }
