@@ -93,6 +93,7 @@ TEST(RapidRun, WritesACompleteRecord) {
   EXPECT_GT(r["gradients"][0]["q_online"].get<double>(), 0);
   EXPECT_EQ(r["gradients"][0]["bc_online"], 0.0);
   EXPECT_TRUE(r["gradients"][0]["q_prior"].is_null());
+  EXPECT_FALSE(r["losses"][0].contains("temperature")) << "DDPG has no entropy temperature";
   EXPECT_GT(r["timing"]["env_steps_per_s"].get<double>(), 0);
   EXPECT_TRUE(std::filesystem::exists(dir.file("job/actor.ckpt")));
 }
@@ -413,6 +414,17 @@ TEST(RapidRun, ThePublishedBaselinesRunOnEveryDrivingScenario) {
       EXPECT_EQ(r["recipe"]["critic_ensemble"], algo == "rlpd-sac" ? 10 : 2) << scenario << " " << algo;
       EXPECT_GT(r["updates"].get<long>(), 0) << scenario << " " << algo;
       EXPECT_TRUE(r["final"]["return_mean"].is_number()) << scenario << " " << algo;
+      // rlpd-sac logs its learned temperature, which has moved from its initial 1.0; td3-bc has none.
+      ASSERT_FALSE(r["losses"].empty()) << scenario << " " << algo;
+      for (const auto& point : r["losses"]) {
+        if (algo == "td3-bc") {
+          EXPECT_FALSE(point.contains("temperature")) << scenario;
+          continue;
+        }
+        ASSERT_TRUE(point.contains("temperature")) << scenario;
+        EXPECT_GT(point["temperature"].get<double>(), 0.0) << scenario;
+        EXPECT_NE(point["temperature"].get<double>(), 1.0) << scenario;
+      }
     }
   }
 }

@@ -47,8 +47,12 @@ void add_curves(const TrainLog& log, nlohmann::json& record) {
   record["gradients"] = nlohmann::json::array();
   for (const LossPoint& p : log.losses) {
     record["bc_loss"].push_back({{"step", p.step}, {"prior", json_number(p.bc_prior)}, {"online", json_number(p.bc_online)}});
-    record["losses"].push_back({{"step", p.step}, {"critic", json_number(p.critic_loss)},
-                                {"actor", json_number(p.actor_loss)}, {"q_mean", json_number(p.q_mean)}});
+    nlohmann::json& losses = record["losses"].emplace_back(
+        nlohmann::json{{"step", p.step}, {"critic", json_number(p.critic_loss)},
+                       {"actor", json_number(p.actor_loss)}, {"q_mean", json_number(p.q_mean)}});
+    // Only an algorithm with a learned temperature (rlpd-sac) has one: the others' records keep
+    // their bytes.
+    if (p.temperature > 0) losses["temperature"] = json_number(p.temperature);
     record["gradients"].push_back({{"step", p.step},
                                    {"q_prior", json_number(p.q_grad_prior)},
                                    {"q_online", json_number(p.q_grad_online)},

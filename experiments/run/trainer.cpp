@@ -15,9 +15,11 @@ namespace {
 struct LossWindow {
   double bc_prior = 0, bc_online = 0, critic = 0, actor = 0, q = 0;
   double q_grad_prior = 0, q_grad_online = 0, bc_grad_prior = 0, bc_grad_online = 0;
+  double temperature = 0;
   long n = 0, n_actor = 0;
   void add(const UpdateStats& s) {
     critic += s.critic_loss;
+    temperature = s.temperature;
     q += s.q_mean;
     ++n;
     if (!s.actor_updated) return;
@@ -41,7 +43,8 @@ struct LossWindow {
                 q_grad_prior / ka,
                 q_grad_online / ka,
                 bc_grad_prior / ka,
-                bc_grad_online / ka};
+                bc_grad_online / ka,
+                temperature};
     *this = {};
     return p;
   }

@@ -33,6 +33,7 @@ struct LossPoint {
   long step = 0;
   double bc_prior = 0, bc_online = 0, critic_loss = 0, actor_loss = 0, q_mean = 0;
   double q_grad_prior = 0, q_grad_online = 0, bc_grad_prior = 0, bc_grad_online = 0;
+  double temperature = 0;  // SAC's entropy temperature α at the window's last step; 0 without one
 };
 
 struct EvalResult {
