@@ -11,6 +11,7 @@
 #include "experiments/run/provenance.hpp"
 #include "experiments/run/run_config.hpp"
 #include "experiments/sweep/attempt.hpp"
+#include "experiments/sweep/eta.hpp"
 #include "experiments/sweep/process_pool.hpp"
 #include "experiments/sweep/progress.hpp"
 
@@ -31,8 +32,16 @@ struct JobRun {
   bool timed_out = false;  // stopped by the job timeout; SIGKILL follows if SIGTERM is ignored
   Clock::time_point started{};
   std::time_t started_wall = 0;
-  long units = 1;  // rough work estimate (env steps) for the ETA
+  long units = 1;  // work in decisions (env steps), at its kind's measured rate for the ETA
 };
+
+// What the ETA measures a job's rate by: its scenario and algorithm, or its stage.
+JobKinds kinds_of(const SweepJob& job) {
+  const std::string general = job.kind == JobKind::kCell        ? job.algo
+                              : job.kind == JobKind::kReference ? "reference"
+                                                                : "datasets";
+  return {job.scenario + "/" + general, general};
+}
 
 bool unsuccessful(Phase p) { return p == Phase::kFailed || p == Phase::kDiverged || p == Phase::kBlocked; }
 
@@ -211,6 +220,7 @@ class LocalRunner {
     r.pid = -1;
     const double took = seconds_since(r.started);
     finished_units_ += r.units;
+    if (!e.signal && e.exit_code == 0) eta_.finished(kinds_of(job), static_cast<double>(r.units), took);
 
     if (e.signal) discard_progress(folder_, job);
     if (e.signal && pool_.interruption()) {  // stopped by us: neither a failure nor an attempt
@@ -296,33 +306,38 @@ class LocalRunner {
     ProgressSnapshot s;
     s.elapsed_s = seconds_since(start_);
     double remaining_units = 0, partial_units = 0;
+    work_left_.clear();
     for (std::size_t i = 0; i < runs_.size(); ++i) {
       const JobRun& r = runs_[i];
+      double left = 0;
       switch (r.phase) {
         case Phase::kNotNeeded: continue;
         case Phase::kOk: ++s.done; break;
         case Phase::kRunning: {
           ++s.running;
           RunningJobView v = running_view(i);
+          left = r.units;
           if (v.step >= 0 && v.steps > 0) {
             const double fraction = std::min(1.0, static_cast<double>(v.step) / static_cast<double>(v.steps));
             partial_units += fraction * r.units;
-            remaining_units += (1 - fraction) * r.units;
-          } else {
-            remaining_units += r.units;
+            left = (1 - fraction) * r.units;
           }
           s.running_jobs.push_back(std::move(v));
           break;
         }
         case Phase::kWaiting:
         case Phase::kReady:
-        case Phase::kNotRun: ++s.pending; remaining_units += r.units; break;
+        case Phase::kNotRun: ++s.pending; left = r.units; break;
         default: ++s.failed; break;
       }
+      remaining_units += left;
+      if (left > 0) work_left_.push_back({kinds_of(folder_.graph.jobs[i]), left});
       ++s.total;
     }
+    s.eta_s = eta_.eta_s(work_left_, options_.workers);
+    // Before any job has finished well: the work done so far, at one rate for all.
     const double rate = (finished_units_ + partial_units) / std::max(s.elapsed_s, 1e-9);
-    if (finished_units_ + partial_units > 0 && rate > 0) s.eta_s = remaining_units / rate;
+    if (s.eta_s < 0 && finished_units_ + partial_units > 0 && rate > 0) s.eta_s = remaining_units / rate;
     return s;
   }
 
@@ -352,6 +367,8 @@ class LocalRunner {
   SweepReport report_;
   Clock::time_point start_{};
   double finished_units_ = 0;
+  EtaModel eta_;
+  mutable std::vector<WorkLeft> work_left_;  // snapshot()'s scratch, kept to reuse its storage
   bool stop_requested_ = false, killed_ = false;
   Clock::time_point stop_time_{};
 };
