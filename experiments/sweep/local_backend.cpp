@@ -36,11 +36,10 @@ struct JobRun {
 };
 
 // What the ETA measures a job's rate by: its scenario and algorithm, or its stage.
-JobKinds kinds_of(const SweepJob& job) {
-  const std::string general = job.kind == JobKind::kCell        ? job.algo
-                              : job.kind == JobKind::kReference ? "reference"
-                                                                : "datasets";
-  return {job.scenario + "/" + general, general};
+CostKind cost_kind(const SweepJob& job) {
+  return {job.scenario, job.kind == JobKind::kCell        ? job.algo
+                        : job.kind == JobKind::kReference ? "reference"
+                                                          : "datasets"};
 }
 
 bool unsuccessful(Phase p) { return p == Phase::kFailed || p == Phase::kDiverged || p == Phase::kBlocked; }
@@ -71,6 +70,8 @@ class LocalRunner {
       runs_[i].forced = options.force && selects(options.selection, job);
       runs_[i].units = work_units(job);
     }
+    for (std::size_t i = 0; i < runs_.size(); ++i)
+      if (!needed[i]) learn_cost_of_cell(folder.graph.jobs[i]);
   }
 
   SweepReport run() {
@@ -166,6 +167,7 @@ class LocalRunner {
       if (!deps_ok) continue;
       if (!r.forced && job_is_done(folder_, job)) {
         r.phase = Phase::kOk;
+        learn_cost_of_cell(job);
         continue;
       }
       if (job.kind == JobKind::kCell) {
@@ -180,6 +182,20 @@ class LocalRunner {
       }
       r.phase = Phase::kReady;
     }
+  }
+
+  // A cell that finished before this sweep started, as a record says: its wall time tells the ETA
+  // what its kind costs, so a resumed sweep's ETA is right from the start. Cells outside --only
+  // count too (what they cost says what their scenario and algorithm cost); the record's hash is
+  // not checked, since a stale record took as long.
+  void learn_cost_of_cell(const SweepJob& job) {
+    if (job.kind != JobKind::kCell) return;
+    const auto record = read_json_file(folder_.path(job_marker_path(job)));
+    const nlohmann::json::json_pointer wall("/timing/wall_s"), status("/status");
+    if (!record || !record->contains(wall) || !(*record)[wall].is_number() || !record->contains(status) ||
+        (*record)[status] != "ok")
+      return;
+    eta_.finished(cost_kind(job), static_cast<double>(work_units(job)), (*record)[wall].get<double>());
   }
 
   // Ready jobs in graph order: the dataset stage first, since whole columns of cells wait on it.
@@ -220,7 +236,7 @@ class LocalRunner {
     r.pid = -1;
     const double took = seconds_since(r.started);
     finished_units_ += r.units;
-    if (!e.signal && e.exit_code == 0) eta_.finished(kinds_of(job), static_cast<double>(r.units), took);
+    if (!e.signal && e.exit_code == 0) eta_.finished(cost_kind(job), static_cast<double>(r.units), took);
 
     if (e.signal) discard_progress(folder_, job);
     if (e.signal && pool_.interruption()) {  // stopped by us: neither a failure nor an attempt
@@ -331,7 +347,7 @@ class LocalRunner {
         default: ++s.failed; break;
       }
       remaining_units += left;
-      if (left > 0) work_left_.push_back({kinds_of(folder_.graph.jobs[i]), left});
+      if (left > 0) work_left_.push_back({cost_kind(folder_.graph.jobs[i]), left});
       ++s.total;
     }
     s.eta_s = eta_.eta_s(work_left_, options_.workers);
