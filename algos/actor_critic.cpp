@@ -29,16 +29,17 @@ ActorCritic::ActorCritic(int obs_dim, int act_dim, const AgentConfig& config, st
                   Mlp::make(obs_dim, config.actor_hidden, act_dim, /*layer_norm=*/false, /*tanh_output=*/true), Mlp()) {}
 
 ActorCritic::ActorCritic(int obs_dim, int act_dim, const AgentConfig& config, std::uint64_t init_seed, Mlp actor,
-                         Mlp acting)
+                         Mlp acting, int actor_heads)
     : config_(with_critics_checked(config)),
       obs_dim_(obs_dim),
       act_dim_(act_dim),
       actor_(std::move(actor)),
-      critics_(obs_dim + act_dim, config.critic_hidden, config.critic_ensemble, config.critic_lr),
+      critics_(obs_dim + act_dim, config.critic_hidden, config.critic_ensemble, config.critic_lr,
+               config.critic_layer_norm),
       update_rng_(stream_seed(init_seed, Stream::kUpdate)) {
   Rng rng(init_seed);
-  actor_.init(rng);
-  critics_.init(rng);
+  actor_.init(rng, config.init, actor_heads);
+  critics_.init(rng, config.init);
   actor_target_ = actor_;
   critics_target_ = critics_;
   acting_actor_ = acting.params().size() > 0 ? std::move(acting) : actor_;

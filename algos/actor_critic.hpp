@@ -1,6 +1,6 @@
 // The DDPG actor-critic backbone every algorithm shares (paper Algorithm 1, eqs. (2)–(3)):
-// deterministic tanh actor, critics Q(s, a) with LayerNorm after each hidden layer, target
-// networks with Polyak averaging, Adam.
+// deterministic tanh actor, critics Q(s, a) with LayerNorm after each hidden layer (the paper's
+// §III-B2; critic_layer_norm turns it off), target networks with Polyak averaging, Adam.
 //
 // The critics are an ensemble of critic_ensemble members (1 for the paper's five), and the target
 // of eq. (3) takes the minimum over critic_subset of the target members drawn afresh for every
@@ -139,8 +139,10 @@ class ActorCritic {
   int act_dim() const { return act_dim_; }
   Adam& actor_optimiser() { return actor_opt_; }
   // With its own actor network instead of the deterministic tanh actor, and the network act()
-  // runs (SAC's Gaussian head and its mean's tanh); initialised like the backbone's.
-  ActorCritic(int obs_dim, int act_dim, const AgentConfig& config, std::uint64_t init_seed, Mlp actor, Mlp acting);
+  // runs (SAC's Gaussian head and its mean's tanh); initialised like the backbone's, its last
+  // layer read as `actor_heads` heads side by side (Mlp::init).
+  ActorCritic(int obs_dim, int act_dim, const AgentConfig& config, std::uint64_t init_seed, Mlp actor, Mlp acting,
+              int actor_heads = 1);
 
  private:
   // λ for the batch's Q(s, π(s)) (a 1 × B row).

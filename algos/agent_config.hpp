@@ -6,6 +6,8 @@
 
 #include <vector>
 
+#include "core/mlp.hpp"
+
 namespace rapid {
 
 struct AgentConfig {
@@ -33,6 +35,12 @@ struct AgentConfig {
   float target_noise_clip{};  // TD3: that noise clipped to ±this
   float init_temperature{};   // SAC: the entropy temperature α at the start
   float target_entropy_per_dim{};  // SAC: the target entropy is this × the action dimension
+  float temperature_lr{};     // SAC: Adam's learning rate for log α
+  // How the networks are built and start (optional keys every algorithm reads; neutral values are
+  // the paper's five's, and a published baseline's recipe sets its code's): LayerNorm after each
+  // hidden layer of the critics, and the initialisation scheme of every network (core/mlp.hpp).
+  bool critic_layer_norm{};
+  WeightInit init{};
 };
 
 }  // namespace rapid

@@ -34,16 +34,16 @@ const std::vector<Algorithm>& algorithms() {
        /*uses_returns=*/true, /*in_paper=*/false, /*variant=*/true},
       // Not in the paper: RLPD as published (SAC, an ensemble of 10 critics, UTD 20; rlpd_sac.hpp).
       {"rlpd-sac", "RLPD (SAC)", "tab:cyan", true, make<RlpdSac>,
-       {"utd_ratio", "critic_ensemble", "critic_subset", "init_temperature", "target_entropy_per_dim"},
+       {"utd_ratio", "critic_ensemble", "critic_subset", "init_temperature", "target_entropy_per_dim", "temperature_lr"},
        /*uses_returns=*/false, /*in_paper=*/false, /*variant=*/false,
-       {{"utd_ratio", 20}, {"critic_ensemble", 10}, {"critic_subset", 2}, {"init_temperature", 1.0},
-        {"target_entropy_per_dim", -0.5}}},
+       {{"utd_ratio", 20}, {"critic_ensemble", 10}, {"critic_subset", 2}, {"init_temperature", 1},
+        {"target_entropy_per_dim", -0.5}, {"temperature_lr", 3e-4}, {"critic_layer_norm", true}, {"init", "xavier"}}},
       // Not in the paper: TD3+BC online on symmetric batches (td3_bc.hpp).
       {"td3-bc", "TD3+BC", "tab:brown", true, make<Td3Bc>,
        {"critic_ensemble", "critic_subset", "policy_delay", "target_noise", "target_noise_clip", "bc_q_alpha"},
        /*uses_returns=*/false, /*in_paper=*/false, /*variant=*/false,
        {{"critic_ensemble", 2}, {"critic_subset", 2}, {"policy_delay", 2}, {"target_noise", 0.2},
-        {"target_noise_clip", 0.5}, {"bc_q_alpha", 2.5}}},
+        {"target_noise_clip", 0.5}, {"bc_q_alpha", 2.5}, {"critic_layer_norm", false}, {"init", "pytorch"}}},
   };
   return table;
 }

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "algos/actor_critic.hpp"
 
 namespace rapid {
@@ -39,10 +41,11 @@ struct Algorithm {
   // A variant of RAPID-RL itself (an ablation such as rapid-rl-return): the reports ask whether it
   // beats RAPID-RL. Every other algorithm is a baseline, and they ask whether RAPID-RL beats it.
   bool variant = false;
-  // The published values of its own keys (RLPD's UTD and ensemble, TD3's delay and noise), given
-  // to a run whose config leaves the key out (experiments/run/job.hpp, with_recipe): the run's
-  // record lists the keys they filled. A config that gives the key wins.
-  std::vector<std::pair<std::string, double>> recipe = {};
+  // The published values of the method's keys (RLPD's UTD, ensemble and temperature, TD3's delay
+  // and noise, each code base's critic LayerNorm and initialisation), given to a run whose config
+  // leaves the key out (experiments/run/job.hpp, with_recipe): the run's record lists the keys
+  // they filled. A config that gives the key wins. Each value's source is in docs/algorithms.md.
+  std::vector<std::pair<std::string, nlohmann::json>> recipe = {};
 
   bool reads(const std::string& key) const;
   // The window its buffers compute Batch::ret over: return_horizon for an algorithm that uses

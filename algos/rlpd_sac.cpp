@@ -1,6 +1,8 @@
 #include "algos/rlpd_sac.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace rapid {
 
@@ -11,15 +13,26 @@ Mlp gaussian_actor(int obs_dim, int act_dim, const AgentConfig& config) {
   return Mlp::make(obs_dim, config.actor_hidden, 2 * act_dim, /*layer_norm=*/false, /*tanh_output=*/false);
 }
 
+// The temperature's keys as a config gives them (its recipe fills them where a config leaves
+// them out): no default stands in for a missing one (agent_config.hpp).
+const AgentConfig& with_temperature_checked(const AgentConfig& c) {
+  if (!(c.init_temperature > 0))
+    throw std::invalid_argument("config key 'init_temperature' must be > 0, got " + std::to_string(c.init_temperature));
+  if (!(c.temperature_lr > 0))
+    throw std::invalid_argument("config key 'temperature_lr' must be > 0, got " + std::to_string(c.temperature_lr));
+  return c;
+}
+
 }  // namespace
 
 RlpdSac::RlpdSac(int obs_dim, int act_dim, const AgentConfig& config, std::uint64_t init_seed)
-    : ActorCritic(obs_dim, act_dim, config, init_seed, gaussian_actor(obs_dim, act_dim, config),
-                  gaussian_actor(obs_dim, act_dim, config).first_outputs(act_dim, /*tanh_output=*/true)),
+    : ActorCritic(obs_dim, act_dim, with_temperature_checked(config), init_seed, gaussian_actor(obs_dim, act_dim, config),
+                  gaussian_actor(obs_dim, act_dim, config).first_outputs(act_dim, /*tanh_output=*/true),
+                  /*actor_heads=*/2),
       sampling_actor_(actor()),
       log_temperature_(Vec::Constant(1, std::log(config.init_temperature))),
       temperature_grad_(Vec::Zero(1)),
-      temperature_opt_(1, AdamConfig{.lr = config.actor_lr}),
+      temperature_opt_(1, AdamConfig{.lr = config.temperature_lr}),
       target_entropy_(config.target_entropy_per_dim * static_cast<float>(act_dim)),
       single_noise_(act_dim, 1) {}
 
@@ -104,7 +117,10 @@ void RlpdSac::actor_and_temperature_step(const Batch& batch, UpdateStats& stats)
   actor_optimiser().step(actor().params(), actor().grads());
   actor_changed();
   // The entropy of the actor step's samples, held fixed (rlpd passes the actor's entropy on).
-  const float entropy = -policy_.log_prob().mean();
+  temperature_step(-policy_.log_prob().mean());
+}
+
+void RlpdSac::temperature_step(float entropy) {
   temperature_loss(entropy, &temperature_grad_[0]);
   temperature_opt_.step(log_temperature_, temperature_grad_);
 }

@@ -1,12 +1,14 @@
 // RLPD as published (Ball et al. 2023; ikostrikov/rlpd's configs/rlpd_config.py, sac_config.py and
 // rlpd/agents/sac/sac_learner.py), beside the paper's reading of it (`rlpd`, the DDPG backbone on
 // symmetric batches): SAC with a tanh-squashed Gaussian actor and a learned entropy temperature
-// (init_temperature 1, target entropy −A/2, the entropy in the critic's target), an ensemble of
+// (init_temperature 1, target entropy −A/2, Adam at temperature_lr = 3e-4 on log α, the entropy
+// in the critic's target), an ensemble of
 // critic_ensemble = 10 LayerNorm critics whose target is the minimum over critic_subset = 2 drawn
 // per step, and utd_ratio = 20 critic steps per decision (the critics' targets move after each),
-// then one actor step and one temperature step on the last batch. Its recipe (algos/registry.cpp)
-// gives these values where a config leaves the keys out; networks, batch, learning rates and
-// budget are the config's, as for every algorithm, so only the method differs (docs/algorithms.md).
+// then one actor step and one temperature step on the last batch; every network starts as rlpd's
+// (init = xavier). Its recipe (algos/registry.cpp) gives these values where a config leaves the
+// keys out; network widths, batch, the actor's and critics' learning rates and the budget are the
+// profile's, as for every algorithm, so only the method differs (docs/algorithms.md).
 //
 // Evaluations and checkpoints use the deterministic policy tanh(μ(s)); exploration samples the
 // Gaussian with the trainer's exploration stream.
@@ -35,6 +37,9 @@ class RlpdSac : public ActorCritic {
   // The temperature loss α·(H − H_target) at entropy H, its gradient with respect to log α
   // written into *grad; changes nothing.
   float temperature_loss(float entropy, float* grad) const;
+  // One Adam step of log α at temperature_lr on that loss at entropy H (what an actor step ends
+  // with, H the entropy of its samples).
+  void temperature_step(float entropy);
   float temperature() const;
   float target_entropy() const { return target_entropy_; }
 

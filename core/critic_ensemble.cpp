@@ -25,10 +25,11 @@ void for_each_member(int k, const F& f) {
 
 }  // namespace
 
-CriticEnsemble::CriticEnsemble(int input_dim, const std::vector<int>& hidden, int members, float lr) {
+CriticEnsemble::CriticEnsemble(int input_dim, const std::vector<int>& hidden, int members, float lr,
+                               bool layer_norm) {
   if (members < 1) throw std::invalid_argument("CriticEnsemble: needs at least one member");
   for (int i = 0; i < members; ++i) {
-    members_.push_back(Mlp::make(input_dim, hidden, 1, /*layer_norm=*/true, /*tanh_output=*/false));
+    members_.push_back(Mlp::make(input_dim, hidden, 1, layer_norm, /*tanh_output=*/false));
     optimisers_.emplace_back(members_.back().params().size(), AdamConfig{.lr = lr});
   }
   all_.resize(members);
@@ -38,8 +39,8 @@ CriticEnsemble::CriticEnsemble(int input_dim, const std::vector<int>& hidden, in
   q_by_size_.resize(members + 1);
 }
 
-void CriticEnsemble::init(Rng& rng) {
-  for (Mlp& m : members_) m.init(rng);
+void CriticEnsemble::init(Rng& rng, WeightInit scheme) {
+  for (Mlp& m : members_) m.init(rng, scheme);
 }
 
 const Mat& CriticEnsemble::forward(const ConstMatRef& x, const std::vector<int>& chosen) {

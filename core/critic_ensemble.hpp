@@ -20,11 +20,12 @@ namespace rapid {
 class CriticEnsemble {
  public:
   CriticEnsemble() = default;
-  // `members` critics Mlp::make(input_dim, hidden, 1, layer_norm = true), trained by Adam at `lr`.
-  CriticEnsemble(int input_dim, const std::vector<int>& hidden, int members, float lr);
+  // `members` critics Mlp::make(input_dim, hidden, 1, layer_norm), trained by Adam at `lr`.
+  // LayerNorm after every hidden layer is the paper's and RLPD's critic; TD3's has none.
+  CriticEnsemble(int input_dim, const std::vector<int>& hidden, int members, float lr, bool layer_norm = true);
 
-  // Initialises the members one after the other from `rng` (Mlp::init).
-  void init(Rng& rng);
+  // Initialises the members one after the other from `rng` (Mlp::init by `scheme`).
+  void init(Rng& rng, WeightInit scheme = WeightInit::kDdpg);
   int size() const { return static_cast<int>(members_.size()); }
   const Mlp& member(int i) const { return members_[i]; }
   Mlp& member(int i) { return members_[i]; }

@@ -29,6 +29,13 @@ const char* kind_name(LayerKind k) {
 
 }  // namespace
 
+const std::vector<std::string>& weight_init_names() {
+  static const std::vector<std::string> names = {"ddpg", "xavier", "pytorch"};
+  return names;
+}
+
+const std::string& weight_init_name(WeightInit scheme) { return weight_init_names()[static_cast<int>(scheme)]; }
+
 Mlp::Mlp(int input_dim, const std::vector<LayerSpec>& layers) : input_dim_(input_dim), specs_(layers) {
   if (input_dim <= 0) throw std::invalid_argument("Mlp: input dimension must be positive");
   if (layers.empty()) throw std::invalid_argument("Mlp: no layers");
@@ -78,15 +85,30 @@ Mlp Mlp::make(int input_dim, const std::vector<int>& hidden, int output_dim, boo
   return Mlp(input_dim, specs);
 }
 
-void Mlp::init(Rng& rng, float final_scale) {
+void Mlp::init(Rng& rng, WeightInit scheme, int output_heads) {
   int last_linear = -1;
   for (int i = 0; i < static_cast<int>(layers_.size()); ++i)
     if (layers_[i].kind == LayerKind::kLinear) last_linear = i;
+  if (output_heads < 1 || layers_[last_linear].out % output_heads != 0)
+    throw std::invalid_argument("Mlp::init: " + std::to_string(layers_[last_linear].out) + " outputs are not " +
+                                std::to_string(output_heads) + " heads of equal width");
   for (int i = 0; i < static_cast<int>(layers_.size()); ++i) {
     const Layer& l = layers_[i];
     if (l.kind == LayerKind::kLinear) {
-      const double bound = (i == last_linear) ? final_scale : 1.0 / std::sqrt(double(l.in));
-      for (int k = 0; k < l.out * l.in + l.out; ++k)
+      const int weights = l.out * l.in;
+      const double fan_in_bound = 1.0 / std::sqrt(double(l.in));
+      if (scheme == WeightInit::kXavier) {
+        const int fan_out = i == last_linear ? l.out / output_heads : l.out;
+        const double bound = std::sqrt(6.0 / double(l.in + fan_out));
+        for (int k = 0; k < weights; ++k) params_[l.w_off + k] = static_cast<float>(rng.uniform(-bound, bound));
+        params_.segment(l.b_off, l.out).setZero();
+        continue;
+      }
+      // kDdpg and kPytorch draw weights then biases from one bound; they differ in the last layer.
+      // DDPG's 3e-3 is the float it always was, widened (the paper's five keep their bits).
+      constexpr double kDdpgFinal = static_cast<double>(3e-3f);
+      const double bound = (i == last_linear && scheme == WeightInit::kDdpg) ? kDdpgFinal : fan_in_bound;
+      for (int k = 0; k < weights + l.out; ++k)
         params_[l.w_off + k] = static_cast<float>(rng.uniform(-bound, bound));
     } else if (l.kind == LayerKind::kLayerNorm) {
       params_.segment(l.w_off, l.out).setOnes();

@@ -27,6 +27,19 @@ enum class LayerKind { kLinear, kLayerNorm, kReLU, kTanh };
 // layer's input-gradient GEMM or every weight-gradient GEMM.
 enum class Grads { kParamsAndInput, kParamsOnly, kInputOnly };
 
+// How a network's Linear layers start (LayerNorm always starts at scale 1, shift 0). Each is the
+// scheme of a published code base, so a published method can start as it did there:
+//   kDdpg     Lillicrap et al. 2016 (§7): weights and biases U(±1/√fan_in), the last layer's
+//             U(±3e-3) (a small output keeps the initial policy and Q near zero); the paper's five.
+//   kXavier   Glorot-uniform weights U(±√(6/(fan_in + fan_out))), zero biases: flax's
+//             xavier_uniform, ikostrikov/rlpd's default_init for every Dense, heads included.
+//   kPytorch  torch.nn.Linear's own reset_parameters: weights and biases U(±1/√fan_in) in every
+//             layer, the last included; sfujim/TD3_BC never overrides it.
+enum class WeightInit { kDdpg, kXavier, kPytorch };
+// Their names in configs and records ("ddpg", "xavier", "pytorch"), in the enum's order.
+const std::vector<std::string>& weight_init_names();
+const std::string& weight_init_name(WeightInit scheme);
+
 struct LayerSpec {
   LayerKind kind;
   int out = 0;  // output width; only read for kLinear (the others keep their input width)
@@ -42,10 +55,10 @@ class Mlp {
   static Mlp make(int input_dim, const std::vector<int>& hidden, int output_dim, bool layer_norm,
                   bool tanh_output);
 
-  // Fan-in uniform initialisation U(-1/√fan_in, 1/√fan_in) for hidden Linear layers, and
-  // U(-final_scale, final_scale) for the last Linear layer (DDPG's small output init keeps the
-  // initial policy and Q near zero). LayerNorm starts at scale 1, shift 0.
-  void init(Rng& rng, float final_scale = 3e-3f);
+  // Draws every parameter by `scheme` (WeightInit), layer by layer from `rng`. The last Linear
+  // layer may stand for `output_heads` side-by-side heads of equal width (SAC's means and log
+  // stds): Xavier then counts one head's width as its fan-out, as two separate Dense layers would.
+  void init(Rng& rng, WeightInit scheme = WeightInit::kDdpg, int output_heads = 1);
 
   // Forward pass; the returned reference stays valid until the next forward.
   const Mat& forward(const ConstMatRef& x);

@@ -233,8 +233,8 @@ TEST(Registry, RowsInThePapersColumnOrderWithPriorUseAndUnknownNames) {
     EXPECT_TRUE(find_algorithm(n).uses_prior) << n;
   for (const Algorithm& a : algorithms()) {
     EXPECT_EQ(a.in_paper, a.name != "rapid-rl-return" && a.name != "rlpd-sac" && a.name != "td3-bc") << a.name;
-    // A recipe sets only the algorithm's own keys, and the paper's five have none.
-    for (const auto& [key, value] : a.recipe) EXPECT_TRUE(a.reads(key) && is_algorithm_key(key)) << a.name << " " << key;
+    // A recipe sets only keys the algorithm reads, and the paper's five have none.
+    for (const auto& [key, value] : a.recipe) EXPECT_TRUE(a.reads(key)) << a.name << " " << key;
     EXPECT_EQ(a.recipe.empty(), a.in_paper || a.name == "rapid-rl-return") << a.name;
     EXPECT_EQ(a.uses_returns, a.name == "rapid-rl-return") << a.name;
     EXPECT_EQ(a.variant, a.name == "rapid-rl-return") << a.name;
@@ -511,6 +511,133 @@ TEST(RlpdSac, TemperatureLossGradientAgreesWithFiniteDifferences) {
   auto a = sac_agent(2, 2, 0.7f);
   EXPECT_FLOAT_EQ(a->target_entropy(), -0.5f * kAct);
   EXPECT_FLOAT_EQ(a->temperature(), 0.7f);
+}
+
+// rlpd's soft target (sac_learner.py, backup_entropy on): y = r + γ·(1 − terminal)·(min over the
+// target subset of Q'(s', a') − α·log π(a'|s')), a' = tanh(μ + σ·ε) sampled from the *current*
+// actor (SAC has no actor target) at the *current* α, ε drawn from the update stream. Recomputed
+// here from the actor's head alone, log π by its formula: Σ_i [log N(ε_i) − log σ_i − log(1 − a_i²)].
+TEST(RlpdSac, SoftTargetSamplesTheCurrentActorAtTheCurrentTemperature) {
+  AgentConfig c = recipe_config("rlpd-sac");
+  c.critic_ensemble = c.critic_subset = 2;  // the minimum over both: no subset draw from the stream
+  c.init_temperature = 0.7f;
+  RlpdSac a(kObs, kAct, c, 17);
+  perturb(a);  // the actor moves away from the target actor's copy, which SAC must not read
+  a.target_critics() = a.critics();
+  const Batch batch = hand_made_batch();
+  const auto expected_targets = [&](Rng& stream) {
+    Mat eps(kAct, kBatch);
+    TanhGaussian::draw_noise(stream, eps);
+    const Mat head = a.actor().forward(batch.next_obs);
+    Mat next_action(kAct, kBatch);
+    RowVec log_pi(kBatch);
+    for (int b = 0; b < kBatch; ++b) {
+      double lp = 0;
+      for (int i = 0; i < kAct; ++i) {
+        const double log_std = std::clamp<double>(head(kAct + i, b), TanhGaussian::kLogStdMin, TanhGaussian::kLogStdMax);
+        const double act = std::tanh(head(i, b) + std::exp(log_std) * eps(i, b));
+        next_action(i, b) = static_cast<float>(act);
+        lp += -0.5 * eps(i, b) * eps(i, b) - 0.5 * std::log(2 * M_PI) - log_std - std::log(1 - act * act);
+      }
+      log_pi[b] = static_cast<float>(lp);
+    }
+    Mat sa(kObs + kAct, kBatch);
+    sa << batch.next_obs, next_action;
+    RowVec min_q = a.target_critics().member(0).forward(sa).row(0);
+    min_q = min_q.cwiseMin(a.target_critics().member(1).forward(sa).row(0));
+    return RowVec(batch.rew.array() +
+                  c.gamma * batch.not_terminal.array() * (min_q.array() - a.temperature() * log_pi.array()));
+  };
+  Rng stream(stream_seed(17, Stream::kUpdate));
+  RowVec expected = expected_targets(stream);
+  EXPECT_TRUE(a.critic_targets(batch).isApprox(expected, 1e-4f)) << a.critic_targets(batch) << "\n" << expected;
+  // A temperature step changes α; the next target reads the new one.
+  a.temperature_step(5.0f);
+  ASSERT_NE(a.temperature(), 0.7f);
+  expected = expected_targets(stream);
+  EXPECT_TRUE(a.critic_targets(batch).isApprox(expected, 1e-4f));
+  EXPECT_GT((expected - batch.rew).cwiseAbs().maxCoeff(), 1e-3f) << "the bootstrap carries weight";
+}
+
+// The temperature's Adam runs at temperature_lr (rlpd's temp_lr = 3e-4), whatever the actor's rate:
+// with the entropy a constant gap above its target, Adam moves log α by its rate per step (its
+// normalised step is 1 for a gradient of constant sign), so after k steps log α has fallen by
+// k·temperature_lr. Before the recipe had the key, the temperature learned at actor_lr (1e-4 on
+// the flow profile): a third of the way.
+TEST(RlpdSac, TemperatureLearnsAtTheTemperatureRateNotTheActors) {
+  AgentConfig c = recipe_config("rlpd-sac");
+  EXPECT_FLOAT_EQ(c.temperature_lr, 3e-4f) << "the recipe's published rate";
+  c.actor_lr = 1e-4f;
+  c.critic_ensemble = c.critic_subset = 2;
+  RlpdSac a(kObs, kAct, c, 17);
+  const double log_alpha0 = std::log(a.temperature());
+  constexpr int kSteps = 200;
+  for (int k = 0; k < kSteps; ++k) a.temperature_step(a.target_entropy() + 1.0f);  // entropy above target: α falls
+  const double fallen = log_alpha0 - std::log(a.temperature());
+  EXPECT_NEAR(fallen, kSteps * 3e-4, 0.02 * kSteps * 3e-4);
+  // And the other way: an entropy below the target raises α at the same rate.
+  RlpdSac b(kObs, kAct, c, 17);
+  for (int k = 0; k < kSteps; ++k) b.temperature_step(b.target_entropy() - 1.0f);
+  EXPECT_NEAR(std::log(b.temperature()) - log_alpha0, kSteps * 3e-4, 0.02 * kSteps * 3e-4);
+  // A config without a positive rate cannot make the agent (no default stands in for it).
+  c.temperature_lr = 0.0f;
+  EXPECT_THROW(RlpdSac(kObs, kAct, c, 17), std::invalid_argument);
+}
+
+// TD3's target policy smoothing on its own (sfujim/TD3_BC: noise 0.2 clipped at 0.5): the target
+// action is clip(π'(s') + clip(n, −c, c), −1, 1) with n ~ N(0, σ̃) from the update stream, drawn
+// per entry column by column; the target is the twin minimum at that action.
+TEST(Td3Bc, TargetPolicySmoothingAddsClippedNoiseToTheTargetAction) {
+  AgentConfig c = recipe_config("td3-bc");
+  ASSERT_FLOAT_EQ(c.target_noise, 0.2f);
+  ASSERT_FLOAT_EQ(c.target_noise_clip, 0.5f);
+  ASSERT_EQ(c.critic_subset, c.critic_ensemble) << "the twin minimum draws no subset";
+  const Batch batch = hand_made_batch();
+  const auto targets_of = [&](const AgentConfig& config, bool clip_noise) {
+    auto a = perturbed_agent("td3-bc", config);
+    const RowVec y = a->critic_targets(batch);
+    Rng stream(stream_seed(17, Stream::kUpdate));
+    const Mat mu = a->actor_target().forward(batch.next_obs);
+    Mat act(kAct, kBatch);
+    for (int b = 0; b < kBatch; ++b)
+      for (int i = 0; i < kAct; ++i) {
+        float n = static_cast<float>(stream.normal(0.0, config.target_noise));
+        if (clip_noise) n = std::clamp(n, -config.target_noise_clip, config.target_noise_clip);
+        act(i, b) = std::clamp(mu(i, b) + n, -1.0f, 1.0f);
+      }
+    Mat sa(kObs + kAct, kBatch);
+    sa << batch.next_obs, act;
+    const RowVec min_q = a->target_critics().member(0).forward(sa).row(0).cwiseMin(
+        a->target_critics().member(1).forward(sa).row(0));
+    const RowVec expected = batch.rew.array() + config.gamma * batch.not_terminal.array() * min_q.array();
+    return std::pair<RowVec, RowVec>(y, expected);
+  };
+  const auto [y, expected] = targets_of(c, true);
+  EXPECT_TRUE(y.isApprox(expected, 1e-6f)) << y << "\n" << expected;
+  AgentConfig plain = c;
+  plain.target_noise = 0.0f;
+  EXPECT_FALSE(perturbed_agent("td3-bc", plain)->critic_targets(batch).isApprox(y, 1e-4f)) << "the noise acts";
+  // Wide noise with a narrow clip: the clip, not the noise's spread, bounds the shift.
+  AgentConfig wide = c;
+  wide.target_noise = 3.0f;
+  wide.target_noise_clip = 0.05f;
+  const auto [y_wide, clipped] = targets_of(wide, true);
+  EXPECT_TRUE(y_wide.isApprox(clipped, 1e-6f));
+  EXPECT_FALSE(y_wide.isApprox(targets_of(wide, false).second, 1e-4f));
+}
+
+// Each published baseline's networks are built as its code builds them: rlpd's critics with
+// LayerNorm, TD3_BC's without; the paper's five keep the paper's LayerNorm critic.
+TEST(Registry, PublishedBaselinesBuildTheirCodesNetworks) {
+  EXPECT_EQ(agent("td3-bc")->critic().describe(), "6-Linear8-ReLU-Linear8-ReLU-Linear1");
+  for (const char* name : {"rlpd-sac", "rapid-rl", "ddpg"})
+    EXPECT_EQ(agent(name)->critic().describe(), "6-Linear8-LN-ReLU-Linear8-LN-ReLU-Linear1") << name;
+  EXPECT_EQ(recipe_config("rlpd-sac").init, WeightInit::kXavier);
+  EXPECT_EQ(recipe_config("td3-bc").init, WeightInit::kPytorch);
+  EXPECT_EQ(recipe_config("rapid-rl").init, WeightInit::kDdpg);
+  // rlpd's Dense layers start with zero biases; its heads' kernels are Glorot-uniform.
+  auto sac = agent("rlpd-sac");
+  EXPECT_EQ(sac->critic().params().tail(1)[0], 0.0f);
 }
 
 // The target's minimum is over exactly M members, drawn afresh each step from the agent's update

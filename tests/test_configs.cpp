@@ -256,6 +256,9 @@ TEST(AlgorithmConfig, TheRecipeFillsOwnKeysAndOtherAlgorithmsKeysAreDropped) {
   EXPECT_EQ(sac.init_temperature, 1.0f);
   EXPECT_EQ(sac.target_entropy_per_dim, -0.5f);
   EXPECT_EQ(sac.policy_delay, 1);  // td3-bc's key: neutral
+  EXPECT_EQ(sac.temperature_lr, 3e-4f);  // rlpd's temp_lr, not the actor's rate
+  EXPECT_TRUE(sac.critic_layer_norm);
+  EXPECT_EQ(sac.init, WeightInit::kXavier);
   const AgentConfig td3 = check_config_fits("td3-bc", plain, "pendulum").agent;
   EXPECT_EQ(td3.critic_ensemble, 2);
   EXPECT_EQ(td3.critic_subset, 2);
@@ -264,6 +267,32 @@ TEST(AlgorithmConfig, TheRecipeFillsOwnKeysAndOtherAlgorithmsKeysAreDropped) {
   EXPECT_EQ(td3.target_noise_clip, 0.5f);
   EXPECT_EQ(td3.bc_q_alpha, 2.5f);
   EXPECT_EQ(td3.utd_ratio, 1);
+  EXPECT_FALSE(td3.critic_layer_norm);  // TD3_BC's critics have no LayerNorm
+  EXPECT_EQ(td3.init, WeightInit::kPytorch);
+  for (const char* algo : {"ddpg", "rlpd", "col-prior", "col-all", "rapid-rl"}) {
+    const AgentConfig a = check_config_fits(algo, plain, "pendulum").agent;
+    EXPECT_TRUE(a.critic_layer_norm) << algo;  // the paper's LayerNorm critic
+    EXPECT_EQ(a.init, WeightInit::kDdpg) << algo;
+  }
+  // The switches are shared keys: a config may turn them for any algorithm, and wins over a recipe.
+  nlohmann::json turned = plain;
+  turned["critic_layer_norm"] = false;
+  turned["init"] = "xavier";
+  EXPECT_FALSE(check_config_fits("rapid-rl", turned, "pendulum").agent.critic_layer_norm);
+  EXPECT_EQ(check_config_fits("td3-bc", turned, "pendulum").agent.init, WeightInit::kXavier);
+  const auto refused = [&](const char* key, const nlohmann::json& value) {
+    nlohmann::json c = plain;
+    c[key] = value;
+    try {
+      check_config_fits("rlpd-sac", c, "pendulum");
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(refused("init", "he"), "config key 'init' expects one of ddpg, xavier, pytorch, got \"he\"");
+  EXPECT_EQ(refused("critic_layer_norm", 1), "config key 'critic_layer_norm' expects true or false, got 1");
+  EXPECT_EQ(refused("temperature_lr", 0), "config key 'temperature_lr' must be positive, got 0");
 
   nlohmann::json shared = plain;
   shared["critic_ensemble"] = 4;
@@ -279,7 +308,7 @@ TEST(AlgorithmConfig, TheRecipeFillsOwnKeysAndOtherAlgorithmsKeysAreDropped) {
     EXPECT_EQ(a.utd_ratio, 1) << algo;
     EXPECT_EQ(a.bc_q_alpha, find_algorithm(algo).reads("bc_q_alpha") ? 1.5f : 0.0f) << algo;
   }
-  // The recipe's keys are not part of the job's config (nor its hash): with_recipe adds them.
+  // The recipe's keys are not part of the job's config: with_recipe adds them.
   EXPECT_FALSE(plain.contains("utd_ratio"));
   EXPECT_EQ(with_recipe(plain, "rlpd-sac")["utd_ratio"], 20);
   EXPECT_FALSE(with_recipe(shared, "ddpg").contains("critic_ensemble"));

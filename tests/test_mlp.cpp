@@ -2,9 +2,11 @@
 // save/load and the soft update.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -160,6 +162,58 @@ TEST(Mlp, InitIsSeededAndScaled) {
   // The output layer starts small (|w| ≤ 3e-3), hidden layers at fan-in scale.
   Mat x = Mat::Ones(10, 1);
   EXPECT_LT(a.forward(x).cwiseAbs().maxCoeff(), 0.2f);
+}
+
+// Each scheme draws from its published bounds (core/mlp.hpp, WeightInit), layer by layer: a
+// 10-8-8 network's parameters are W1 (8×10) at 0, b1 at 80, W2 (8×8) at 88, b2 at 152.
+TEST(Mlp, EachInitSchemeDrawsFromItsPublishedBounds) {
+  const auto drawn = [](WeightInit scheme, int heads) {
+    Mlp m = Mlp::make(10, {8}, 8, /*layer_norm=*/false, /*tanh_output=*/false);
+    Rng rng(9);
+    m.init(rng, scheme, heads);
+    return m.params();
+  };
+  struct Part {
+    int from, n;
+  };
+  const Part w1{0, 80}, b1{80, 8}, w2{88, 64}, b2{152, 8};
+  // Every entry within `bound`, and the largest near it (64 or more uniform draws: the chance that
+  // all fall below 0.8·bound is under 1e-6), or all exactly 0.
+  const auto expect_uniform = [](const Vec& p, Part part, double bound, const char* what) {
+    const double max = p.segment(part.from, part.n).cwiseAbs().maxCoeff();
+    if (bound == 0) {
+      EXPECT_EQ(max, 0.0) << what;
+      return;
+    }
+    EXPECT_LE(max, bound) << what;
+    EXPECT_GT(max, 0.8 * bound) << what;
+  };
+  const double fan_in_10 = 1 / std::sqrt(10.0), fan_in_8 = 1 / std::sqrt(8.0);
+  const Vec ddpg = drawn(WeightInit::kDdpg, 1);
+  expect_uniform(ddpg, w1, fan_in_10, "ddpg W1");
+  expect_uniform(ddpg, b1, fan_in_10, "ddpg b1");
+  expect_uniform(ddpg, w2, 3e-3, "ddpg W2");
+  expect_uniform(ddpg, b2, 3e-3, "ddpg b2");
+  const Vec torch = drawn(WeightInit::kPytorch, 1);
+  expect_uniform(torch, w2, fan_in_8, "pytorch W2");
+  expect_uniform(torch, b2, fan_in_8, "pytorch b2");
+  EXPECT_EQ(torch.head(88), ddpg.head(88)) << "the hidden layers are drawn alike";
+  const Vec xavier = drawn(WeightInit::kXavier, 1);
+  expect_uniform(xavier, w1, std::sqrt(6.0 / 18), "xavier W1");
+  expect_uniform(xavier, b1, 0, "xavier b1");
+  expect_uniform(xavier, w2, std::sqrt(6.0 / 16), "xavier W2");
+  expect_uniform(xavier, b2, 0, "xavier b2");
+  // Two heads of 4 side by side start as two Dense(4) layers would: fan-out 4, not 8.
+  const Vec heads = drawn(WeightInit::kXavier, 2);
+  expect_uniform(heads, w2, std::sqrt(6.0 / 12), "xavier W2, two heads");
+  // The default is DDPG's, drawn as it always was (the paper's five keep their bits).
+  Mlp plain = Mlp::make(10, {8}, 8, false, false);
+  Rng rng(9);
+  plain.init(rng);
+  EXPECT_EQ(plain.params(), ddpg);
+  EXPECT_THROW(plain.init(rng, WeightInit::kXavier, 3), std::invalid_argument);
+  EXPECT_EQ(weight_init_names(), (std::vector<std::string>{"ddpg", "xavier", "pytorch"}));
+  EXPECT_EQ(weight_init_name(WeightInit::kPytorch), "pytorch");
 }
 
 TEST(Mlp, RejectsWrongInputSize) {

@@ -412,6 +412,10 @@ TEST(RapidRun, ThePublishedBaselinesRunOnEveryDrivingScenario) {
       const auto r = read_record(job);
       EXPECT_EQ(r["status"], "ok") << scenario << " " << algo;
       EXPECT_EQ(r["recipe"]["critic_ensemble"], algo == "rlpd-sac" ? 10 : 2) << scenario << " " << algo;
+      // Each code base's own values (docs/algorithms.md, "Which values are the method's").
+      EXPECT_EQ(r["recipe"]["critic_layer_norm"], algo == "rlpd-sac") << scenario << " " << algo;
+      EXPECT_EQ(r["recipe"]["init"], algo == "rlpd-sac" ? "xavier" : "pytorch") << scenario << " " << algo;
+      if (algo == "rlpd-sac") EXPECT_EQ(r["recipe"]["temperature_lr"], 3e-4) << scenario;
       EXPECT_GT(r["updates"].get<long>(), 0) << scenario << " " << algo;
       EXPECT_TRUE(r["final"]["return_mean"].is_number()) << scenario << " " << algo;
       // rlpd-sac logs its learned temperature, which has moved from its initial 1.0; td3-bc has none.

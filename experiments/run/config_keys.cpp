@@ -28,7 +28,9 @@ constexpr Bounds at_least(double x) { return {.lo = x}; }
 // The JSON value in the type of the key's field, or a message naming that type.
 template <typename T>
 T typed(const std::string& key, const nlohmann::json& v) {
-  if constexpr (std::is_floating_point_v<T>) {
+  if constexpr (std::is_same_v<T, bool>) {
+    if (!v.is_boolean()) reject(key, "expects true or false, got " + json_excerpt(v));
+  } else if constexpr (std::is_floating_point_v<T>) {
     if (!v.is_number()) reject(key, "expects a number, got " + json_excerpt(v));
     if (!std::isfinite(v.get<double>())) reject(key, "expects a finite number, got " + json_excerpt(v));
   } else if constexpr (std::is_integral_v<T>) {
@@ -45,7 +47,8 @@ T typed(const std::string& key, const nlohmann::json& v) {
 
 template <typename T>
 const char* type_name() {
-  if constexpr (std::is_floating_point_v<T>) return "number";
+  if constexpr (std::is_same_v<T, bool>) return "true or false";
+  else if constexpr (std::is_floating_point_v<T>) return "number";
   else if constexpr (std::is_integral_v<T>) return "integer";
   else return "list of integers";
 }
@@ -91,7 +94,7 @@ ConfigKey key(std::string name, T Holder::*field, Bounds bounds, std::string doc
   ConfigKey k{name, part_of<Holder>(), type_name<T>(), bounds, std::move(doc), for_scenario, {}, {}, {}, {}};
   k.read = [name, field, bounds](const nlohmann::json& v, RunConfig& config) {
     const T x = typed<T>(name, v);
-    check_bounds(name, bounds, x, v);
+    if constexpr (!std::is_same_v<T, bool>) check_bounds(name, bounds, x, v);
     holder<Holder>(config).*field = x;
   };
   k.write = [field](const RunConfig& config) { return nlohmann::json(holder<Holder>(config).*field); };
@@ -124,6 +127,26 @@ ConfigKey descriptor_choice_key(std::string name, std::string ScenarioSettings::
   return k;
 }
 
+// The agent's initialisation scheme by its name (core/mlp.hpp, WeightInit); absent: ddpg.
+ConfigKey init_key() {
+  const std::string name = "init";
+  ConfigKey k{name, ConfigPart::kAgent, "one of " + comma_joined(weight_init_names()), kAny,
+              "how every network's Linear layers start: ddpg (Lillicrap et al. 2016: U(±1/√fan_in), the last "
+              "layer U(±3e-3); the paper's five), xavier (Glorot-uniform weights, zero biases: ikostrikov/rlpd's "
+              "default_init; rlpd-sac's recipe), pytorch (torch.nn.Linear's default, U(±1/√fan_in) for weights and "
+              "biases of every layer: sfujim/TD3_BC; td3-bc's recipe); absent: ddpg",
+              nullptr, {}, {}, {}, {}};
+  k.read = [name](const nlohmann::json& v, RunConfig& config) {
+    const std::vector<std::string>& names = weight_init_names();
+    const auto it = v.is_string() ? std::find(names.begin(), names.end(), v.get<std::string>()) : names.end();
+    if (it == names.end()) reject(name, "expects one of " + comma_joined(names) + ", got " + json_excerpt(v));
+    config.agent.init = static_cast<WeightInit>(it - names.begin());
+  };
+  k.write = [](const RunConfig& config) { return nlohmann::json(weight_init_name(config.agent.init)); };
+  k.set_neutral = [](RunConfig& config) { config.agent.init = WeightInit::kDdpg; };
+  return k;
+}
+
 }  // namespace
 
 const char* part_name(ConfigPart part) {
@@ -145,7 +168,11 @@ const std::vector<ConfigKey>& config_keys() {
   static const std::vector<ConfigKey> keys = {
       key("actor_hidden", &AgentConfig::actor_hidden, kPositive, "hidden layer widths of the actor (tanh output)"),
       key("critic_hidden", &AgentConfig::critic_hidden, kPositive,
-          "hidden layer widths of the critic, LayerNorm after each"),
+          "hidden layer widths of the critic, LayerNorm after each unless critic_layer_norm is false"),
+      optional_key("critic_layer_norm", &AgentConfig::critic_layer_norm, kAny, true,
+                   "LayerNorm after each hidden layer of every critic (the paper's §III-B2 and ikostrikov/rlpd's "
+                   "critic_layer_norm); td3-bc's recipe: false (sfujim/TD3_BC's critics have none); absent: true"),
+      init_key(),
       key("actor_lr", &AgentConfig::actor_lr, kPositive, "Adam learning rate of the actor"),
       key("critic_lr", &AgentConfig::critic_lr, kPositive, "Adam learning rate of the critic"),
       key("gamma", &AgentConfig::gamma, {.lo = 0, .hi = 1, .hi_open = true}, "discount factor γ"),
@@ -182,6 +209,9 @@ const std::vector<ConfigKey>& config_keys() {
                    "rlpd-sac: the entropy temperature α at the start (learned from there); recipe: 1"),
       optional_key("target_entropy_per_dim", &AgentConfig::target_entropy_per_dim, kAny, 0.0f,
                    "rlpd-sac: the temperature's target entropy is this × the action dimension; recipe: -0.5"),
+      optional_key("temperature_lr", &AgentConfig::temperature_lr, kPositive, 0.0f,
+                   "rlpd-sac: Adam's learning rate for the temperature's log α; recipe: 3e-4 (ikostrikov/rlpd "
+                   "configs/sac_config.py temp_lr, not the actor's rate)"),
       key("steps", &RunConfig::steps, kPositive, "environment decisions of training"),
       key("warmup_steps", &RunConfig::warmup_steps, kNonNegative,
           "decisions of uniform-random actions, without updates, before learning starts; 0: none, π(s) + noise "

@@ -19,12 +19,8 @@ void check_dataset_fits(const std::string& algo, bool has_dataset) {
 
 nlohmann::json recipe_fills(const nlohmann::json& config, const std::string& algo) {
   nlohmann::json fills = nlohmann::json::object();
-  for (const auto& [key, value] : find_algorithm(algo).recipe) {
-    if (config.contains(key)) continue;
-    // A whole number goes in as an integer, which integer keys require and number keys accept.
-    if (value == std::floor(value)) fills[key] = static_cast<long>(value);
-    else fills[key] = value;
-  }
+  for (const auto& [key, value] : find_algorithm(algo).recipe)
+    if (!config.contains(key)) fills[key] = value;
   return fills;
 }
 
@@ -33,7 +29,7 @@ nlohmann::json with_recipe(const nlohmann::json& config, const std::string& algo
   nlohmann::json with = config;
   for (const ConfigKey& key : config_keys())
     if (key.optional() && !a.reads(key.name)) with.erase(key.name);
-  // The recipe's keys are the algorithm's own, so the erasure above left them as `config` has them.
+  // The recipe's keys are keys the algorithm reads, so the erasure above left them as `config` has them.
   with.update(recipe_fills(config, algo));
   return with;
 }
@@ -49,6 +45,10 @@ std::string job_config_hash(const JobSpec& spec) {
                         {"config", spec.config}, {"dataset", nullptr}};
   if (!spec.dataset_path.empty()) key["dataset"] = fnv1a_hex(read_file(spec.dataset_path));
   if (!spec.checkpoint_steps.empty()) key["checkpoint_steps"] = spec.checkpoint_steps;
+  // What the algorithm's recipe fills is part of what the job runs: a binary whose recipe changed
+  // (rlpd-sac's temperature rate, td3-bc's critics) reruns those jobs instead of resuming them.
+  // The paper's five have no recipe, so their hashes are what they were.
+  if (nlohmann::json fills = recipe_fills(spec.config, spec.algo); !fills.empty()) key["recipe"] = std::move(fills);
   // A scenario file's runs also depend on its files (the built-ins' are part of the harness).
   if (is_driving_scenario(spec.scenario) && !is_builtin_scenario(spec.scenario))
     key["scenario_files"] = scenario_files_hash(*scenario_descriptor(spec.scenario));

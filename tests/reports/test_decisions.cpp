@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include "core/rng.hpp"
@@ -236,7 +237,21 @@ TEST_F(DecisionsTest, AdaptiveSeedsDecideAWrongDifferenceInAtMostAlphaAndATrueOn
   EXPECT_LE(null.fixed_max.any_difference / double(kExperiments), bound);
   EXPECT_GT(null.looks, 1.0);  // the looks did add seeds
   EXPECT_GT(null.adaptive.runs, null.fixed_initial.runs);
-  EXPECT_LE(null.adaptive.runs, null.fixed_max.runs + plan.block * null.cells);
+
+  // Comparisons that the maximum cannot decide grow to it, look by look: every cell's k-th seed
+  // has the same return in every cell (no difference to find) and the seeds spread far beyond δ
+  // (no equivalence either), so --decide takes all 5 looks (10, 15, …, 30 seeds) and every cell
+  // runs 30. Fewer runs would mean a look stopped an undecided comparison; more, a cell past the
+  // maximum.
+  std::map<std::string, int> drawn;
+  const DecideSimulation hopeless = simulate_decide(s, 10, plan, 20, 9, [&](const CellSummary& c, Rng&) {
+    const int k = drawn[c.key()]++;
+    return seed_with(500.0 + 1e6 * std::sin(k));
+  });
+  EXPECT_EQ(hopeless.adaptive.any_difference, 0);
+  EXPECT_DOUBLE_EQ(hopeless.looks, 5.0);
+  EXPECT_DOUBLE_EQ(hopeless.adaptive.runs, 30.0 * hopeless.cells);
+  EXPECT_DOUBLE_EQ(hopeless.fixed_max.runs, 30.0 * hopeless.cells);
 
   // RAPID-RL truly 2δ above every other algorithm, seed std δ: 10 seeds do not always tell, the looks do.
   const DecideSimulation better = simulate_decide(s, 10, plan, 500, 8, [&](const CellSummary& c, Rng& rng) {
