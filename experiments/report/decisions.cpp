@@ -238,8 +238,10 @@ class Builder {
     for (std::size_t k = 0; k < p.size(); ++k) {
       if (!rejected[k]) continue;
       Comparison& c = out_.comparisons[owner[k].first];
-      if (!owner[k].second) c.outcome = c.d.diff > 0 ? ComparisonOutcome::kXBetter : ComparisonOutcome::kYBetter;
-      else if (c.outcome == ComparisonOutcome::kUndecided) c.outcome = ComparisonOutcome::kEquivalent;  // a difference takes precedence
+      // A difference shown to lie within ±δ is no win (docs/decisions.md): when both tests reject,
+      // the comparison is equivalent. A comparison's equivalence test follows its difference test.
+      if (owner[k].second) c.outcome = ComparisonOutcome::kEquivalent;
+      else c.outcome = c.d.diff > 0 ? ComparisonOutcome::kXBetter : ComparisonOutcome::kYBetter;
     }
     for (Comparison& c : out_.comparisons) {
       if (c.outcome != ComparisonOutcome::kUndecided || std::isnan(c.d.se)) continue;

@@ -95,6 +95,18 @@ TEST_F(DecisionsTest, ClearDifferencesConfirmAndRefute) {
   EXPECT_EQ(claim(same, "C2").verdict, "REFUTED") << claim(same, "C2").reason;
   for (std::size_t i : claim(same, "C2").comparisons)
     EXPECT_EQ(same.decisions->comparisons[i].outcome, ComparisonOutcome::kEquivalent);
+  // A real difference shown to lie within δ (= 11.8 here): RAPID-RL 6 above DDPG with a spread so
+  // small that both tests reject. The rule says a difference within δ is no win: equivalent, and
+  // C2 refuted, not confirmed.
+  const Summary small = make([](const std::string&, const std::string& algo) { return algo == "rapid-rl" ? 166.0 : 160.0; },
+                             10, 0.1);
+  for (std::size_t i : claim(small, "C2").comparisons) {
+    const Comparison& c = small.decisions->comparisons[i];
+    EXPECT_LT(c.p_difference, 1e-6);
+    EXPECT_LT(c.p_equivalence, 1e-6);
+    EXPECT_EQ(c.outcome, ComparisonOutcome::kEquivalent);
+  }
+  EXPECT_EQ(claim(small, "C2").verdict, "REFUTED") << claim(small, "C2").reason;
 }
 
 // rlpd-sac and td3-bc are not the paper's: RAPID-RL is compared with them in every row as a family of
