@@ -46,8 +46,18 @@ std::string not_a_regular_file(const std::string& path) {
 void write_file_atomic(const std::string& path, std::string_view content) {
   if (const std::string kind = not_a_regular_file(path); !kind.empty())
     throw FileWriteError(path, "it is " + kind + ", not a regular file");
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  // The temporary is created, never opened: O_EXCL fails on anything already at its name (a
+  // symlink planted at the predictable "<path>.tmp.<pid>" included, which O_NOFOLLOW alone would
+  // not stop from naming a file elsewhere), and then the next name is tried, "<path>.tmp.<pid>.<n>"
+  // (both are what remove_leftover_temporaries knows).
+  const std::string stem = path + ".tmp." + std::to_string(::getpid());
+  std::string tmp = stem;
+  int fd = -1;
+  for (int n = 1; n <= 100; ++n) {
+    fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd >= 0 || errno != EEXIST) break;
+    tmp = stem + "." + std::to_string(n);
+  }
   if (fd < 0) throw FileWriteError(path, std::strerror(errno));
   const char* p = content.data();
   std::size_t left = content.size();

@@ -23,6 +23,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 from scenario_files import scenario_edges, scenario_labels  # noqa: E402
+from output_files import RefusedOutput, check_outputs, write_atomic  # noqa: E402
 
 SCHEMA = "rapid.trace/1"
 SCHEMA_PREFIX = "rapid.trace/"
@@ -430,6 +431,11 @@ def main(argv, prog="plot animate"):
         print(f"{prog}: -o {args.out}: folder '{out_dir}' does not exist", file=sys.stderr)
         return 2
     try:
+        check_outputs([args.out])
+    except RefusedOutput as e:
+        print(f"{prog}: -o {e}", file=sys.stderr)
+        return 2
+    try:
         trace = load_trace(args.trace, args.scenario)
     except BadTrace as e:
         return fail(str(e))
@@ -452,19 +458,22 @@ def main(argv, prog="plot animate"):
         return 1
 
     animator = Animator(trace, episode)
-    tmp = f"{args.out}.tmp.{os.getpid()}{ext}"
+    if ext == ".png":
+        def write(f):
+            animator.image(n // 2 if args.frame is None else args.frame).save(f, format="PNG", optimize=True)
+    else:
+        frames = _quantized([animator.image(k) for k in _frame_indices(n, args.max_frames)])
+        duration = round(1000.0 / args.fps)
+        # The last frame lingers, so the ending can be read before the loop restarts.
+        durations = [duration] * (len(frames) - 1) + [max(duration, 2000)]
+
+        def write(f):
+            frames[0].save(f, format="GIF", save_all=True, append_images=frames[1:], duration=durations, loop=0,
+                           optimize=False)
     try:
-        if ext == ".png":
-            animator.image(n // 2 if args.frame is None else args.frame).save(tmp, optimize=True)
-        else:
-            frames = _quantized([animator.image(k) for k in _frame_indices(n, args.max_frames)])
-            duration = round(1000.0 / args.fps)
-            # The last frame lingers, so the ending can be read before the loop restarts.
-            durations = [duration] * (len(frames) - 1) + [max(duration, 2000)]
-            frames[0].save(tmp, save_all=True, append_images=frames[1:], duration=durations, loop=0, optimize=False)
-        os.replace(tmp, args.out)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+        write_atomic(args.out, write)
+    except RefusedOutput as e:  # something was put at the output's name while the frames were drawn
+        print(f"{prog}: -o {e}", file=sys.stderr)
+        return 2
     print(f"wrote {args.out}")
     return 0

@@ -73,3 +73,20 @@ TEST_F(AtomicFile, NeverReplacesWhatIsNotARegularFile) {
   }
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 4 + device) << "no temporary left";
 }
+
+// The temporary's name is predictable ("<path>.tmp.<pid>"), so whatever another user planted
+// there must not be written through (issue 46: a symlink there made `rapid diff --write-baseline`
+// overwrite its target and leave the baseline a symlink to it). The writer creates its temporary
+// exclusively, takes the next name when one is taken, and the target ends a regular file.
+TEST_F(AtomicFile, NeverWritesThroughWhatIsPlantedAtItsTemporarysName) {
+  std::ofstream(file("victim")) << "precious";
+  const std::string stem = file("b.json") + ".tmp." + std::to_string(::getpid());
+  fs::create_symlink(file("victim"), stem);
+  fs::create_symlink(file("victim"), stem + ".1");
+  write_file_atomic(file("b.json"), "baseline");
+  EXPECT_EQ(read_file(file("victim")), "precious");
+  EXPECT_FALSE(fs::is_symlink(file("b.json")));
+  EXPECT_EQ(read_file(file("b.json")), "baseline");
+  EXPECT_TRUE(fs::is_symlink(stem)) << "what was planted is not ours to remove";
+  EXPECT_FALSE(fs::exists(stem + ".2")) << "the temporary was renamed into place";
+}

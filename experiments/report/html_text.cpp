@@ -18,6 +18,10 @@ std::string html_escape(std::string_view text) {
   return out;
 }
 
+std::string html_value(const nlohmann::json& value) {
+  return html_escape(value.is_string() ? value.get_ref<const std::string&>() : value.dump());
+}
+
 std::string base64(std::string_view bytes) {
   static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "core/atomic_file.hpp"
 #include "experiments/report/format.hpp"
@@ -52,7 +53,7 @@ std::string counted(const nlohmann::json& counts) {
   std::string out;
   if (counts.is_object())
     for (const auto& [value, n] : counts.items())
-      out += (out.empty() ? "" : "; ") + html_escape(value) + " (" + n.dump() + (n == 1 ? " run)" : " runs)");
+      out += (out.empty() ? "" : "; ") + html_escape(value) + " (" + html_value(n) + (n == 1 ? " run)" : " runs)");
   return out.empty() ? "—" : out;
 }
 
@@ -71,7 +72,7 @@ std::string joined_names(const nlohmann::json& list, std::string (*display)(cons
 std::string grid_facts(const ReportFolder& folder) {
   const nlohmann::json& grid = folder.summary["grid"];
   std::string seeds;
-  for (const nlohmann::json& s : grid.value("seeds", nlohmann::json::array())) seeds += (seeds.empty() ? "" : ", ") + s.dump();
+  for (const nlohmann::json& s : grid.value("seeds", nlohmann::json::array())) seeds += (seeds.empty() ? "" : ", ") + html_value(s);
   std::string html = fact("Grid", "<code>" + html_escape(grid.value("name", "")) + "</code>, profile <code>" +
                                       html_escape(folder.sweep.grid.profile) + "</code>");
   if (!folder.sweep.grid.description.empty()) html += fact("Description", html_escape(folder.sweep.grid.description));
@@ -91,7 +92,7 @@ std::string grid_facts(const ReportFolder& folder) {
   std::string statuses;
   const nlohmann::json counts = folder.summary.value("status_counts", nlohmann::json::object());
   for (const auto& [status, n] : counts.items())
-    statuses += (statuses.empty() ? "" : ", ") + n.dump() + " " + html_escape(status);
+    statuses += (statuses.empty() ? "" : ", ") + html_value(n) + " " + html_escape(status);
   html += fact("Runs", statuses + " in " + std::to_string(folder.summary["cells"].size()) + " cells");
   return html;
 }
@@ -159,7 +160,15 @@ std::string report_page_html(const ReportFolder& folder) {
 }
 
 std::uintmax_t write_report_page(const fs::path& report_dir, const fs::path& sweep_dir) {
-  const std::string html = report_page_html(read_report_folder(report_dir, sweep_dir));
+  const ReportFolder folder = read_report_folder(report_dir, sweep_dir);
+  std::string html;
+  try {
+    html = report_page_html(folder);
+  } catch (const nlohmann::json::exception& e) {
+    // A field of the wrong type in a hand-edited summary.json, grid.json or sweep.json.
+    throw std::invalid_argument((report_dir / "summary.json").string() + " (or its grid.json, sweep.json): a field has "
+                                "the wrong type: " + e.what());
+  }
   write_file_atomic((report_dir / kReportPage).string(), html);
   return html.size();
 }

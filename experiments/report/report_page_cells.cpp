@@ -27,7 +27,7 @@ std::string statistics_line(const nlohmann::json& cell, int decimals) {
   std::string statuses;
   const nlohmann::json counts = cell.value("statuses", nlohmann::json::object());
   for (const auto& [status, n] : counts.items())
-    statuses += (statuses.empty() ? "" : ", ") + n.dump() + " " + html_escape(status);
+    statuses += (statuses.empty() ? "" : ", ") + html_value(n) + " " + html_escape(status);
   std::string html = "<p>Seeds: " + statuses + ". Mean " + (value("mean") ? fixed(*value("mean"), decimals) : "—") +
                      " " + interval_text(cell.value("mean_ci", nlohmann::json()), decimals) + ", IQM " +
                      (value("iqm") ? fixed(*value("iqm"), decimals) : "—") + " " +
@@ -40,8 +40,8 @@ std::string statistics_line(const nlohmann::json& cell, int decimals) {
 std::string seed_row(const nlohmann::json& seed, const std::string& colour, const SeedFiles* files, int decimals) {
   const std::string status = seed.value("status", "");
   const std::optional<double> final = number(seed.value("final", nlohmann::json()));
-  std::string html = "<tr data-seed=\"" + seed.value("seed", nlohmann::json(0)).dump() + "\"><td><span class=\"swatch\" style=\"background:" +
-                     colour + "\"></span>" + seed.value("seed", nlohmann::json(0)).dump() + "</td><td class=\"status status-" +
+  std::string html = "<tr data-seed=\"" + html_value(seed.value("seed", nlohmann::json(0))) + "\"><td><span class=\"swatch\" style=\"background:" +
+                     colour + "\"></span>" + html_value(seed.value("seed", nlohmann::json(0))) + "</td><td class=\"status status-" +
                      html_escape(status) + "\">" + html_escape(status) + "</td><td class=\"final\" data-sort=\"" +
                      exact_number(final) + "\">" + (final ? fixed(*final, decimals) : "—") + "</td><td>";
   if (files && files->record_present)

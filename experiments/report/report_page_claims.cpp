@@ -44,7 +44,7 @@ std::string comparisons_table(const nlohmann::json& d) {
             "</td><td>" + p_text(c.value("p_difference", nlohmann::json())) + "</td><td>" +
             p_text(c.value("p_equivalence", nlohmann::json())) + "</td><td>" + html_escape(c.value("outcome", "")) +
             "</td>" + (wanted ? "<td>" + html_escape(c.value("wanted", "")) + "</td>" : "") + "<td>" +
-            (needed.is_number() ? needed.dump() : "—") + "</td></tr>\n";
+            (needed.is_number() ? html_value(needed) : "—") + "</td></tr>\n";
   }
   return html + "</tbody></table>";
 }
@@ -96,7 +96,7 @@ std::string adaptive(const nlohmann::json& summary) {
     const nlohmann::json added = look.value("added_seeds", nlohmann::json::array());
     const std::size_t cells = look.value("cells", nlohmann::json::array()).size();
     html += "<tr><td>" + std::to_string(look.value("look", 0)) + "</td><td>" + html_escape(look_verdicts_text(look)) +
-            "</td><td>" + (added.empty() ? std::string("—") : seed_range(added)) +
+            "</td><td>" + (added.empty() ? std::string("—") : html_escape(seed_range(added))) +
             "</td><td>" +
             (cells == 0 ? std::string("—")
                         : "<details><summary>" + std::to_string(cells) + "</summary>" +
@@ -121,7 +121,7 @@ std::string claim_numbers(const nlohmann::json& c) {
   html += "</tr></thead><tbody>\n";
   for (const nlohmann::json& row : c.value("rows", nlohmann::json::array())) {
     html += "<tr>";
-    for (const nlohmann::json& x : row) html += "<td>" + html_escape(x.is_string() ? x.get<std::string>() : x.dump()) + "</td>";
+    for (const nlohmann::json& x : row) html += "<td>" + html_value(x) + "</td>";
     html += "</tr>\n";
   }
   return html + "</tbody></table>\n";

@@ -239,6 +239,39 @@ def check_folder(rapid, chromium, folder, artifacts, scratch):
     return problems
 
 
+HOSTILE = "<img src=x onerror=document.documentElement.setAttribute('data-xss',1)>"
+
+
+def check_hostile(rapid, chromium, folder, scratch):
+    """A summary.json edited to carry a script in the fields that once reached the page raw
+    (issue 46: grid.seeds, the status counts, the provenance counts): `--html-only` shows it as
+    text and Chromium runs nothing of it."""
+    copy = os.path.join(scratch, "hostile")
+    shutil.copytree(folder, copy)
+    with open(os.path.join(copy, "summary.json")) as f:
+        summary = json.load(f)
+    summary["status_counts"] = {"ok": HOSTILE}
+    summary["grid"]["seeds"] = [HOSTILE]
+    summary.setdefault("provenance", {})["code_revisions"] = {"0000000": HOSTILE}
+    with open(os.path.join(copy, "summary.json"), "w") as f:
+        json.dump(summary, f)
+    made = subprocess.run([rapid, "summarize", copy, "--html-only"], capture_output=True, text=True)
+    if made.returncode != 0:
+        return [f"hostile summary.json: rapid summarize --html-only: exit {made.returncode}: {made.stdout}{made.stderr}"]
+    shown = run_chromium(chromium, ["--virtual-time-budget=5000", "--dump-dom",
+                                    "file://" + os.path.join(copy, "report.html")], os.path.join(scratch, "hostile-profile"))
+    problems = []
+    html_tag = re.search(r"<html[^>]*>", shown.stdout)
+    if html_tag is None:
+        problems.append(f"hostile summary.json: no page in chromium's DOM: {shown.stderr[-1000:]}")
+    elif "data-xss" in html_tag.group(0):
+        problems.append(f"hostile summary.json: the page ran the injected handler: {html_tag.group(0)}")
+    if "&lt;img src=x" not in shown.stdout:
+        problems.append("hostile summary.json: the injected text is not shown as text")
+    print(f"hostile summary.json: {'ok' if not problems else 'FAILED'}")
+    return problems
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("folders", nargs="+", help="reports folders (results/quick, …)")
@@ -258,6 +291,11 @@ def main():
             for problem in check_folder(args.rapid, chromium, os.path.abspath(folder), args.artifacts, scratch):
                 failed = True
                 print(f"  {problem}")
+        # The first folder whose summary has provenance, so that all three fields reach the page.
+        with_provenance = [f for f in args.folders if "provenance" in json.load(open(os.path.join(f, "summary.json")))]
+        for problem in check_hostile(args.rapid, chromium, os.path.abspath((with_provenance or args.folders)[0]), scratch):
+            failed = True
+            print(f"  {problem}")
     return 1 if failed else 0
 
 

@@ -5,8 +5,16 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <regex>
+#include <set>
 #include <vector>
 
+#include "experiments/report/report_folder.hpp"
+#include "experiments/report/report_page.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
 #include "tests/reports/report_test_util.hpp"
@@ -139,6 +147,63 @@ TEST(CommittedReportPages, RegenerateByteForByteFromTheCommittedFiles) {
     }
     EXPECT_TRUE(has(page, "The run records are not in this folder")) << folder;
   }
+}
+
+// Every value of summary.json, grid.json and sweep.json that reaches the page is escaped (issue 46:
+// `summarize --html-only` once put grid.seeds, status counts and provenance counts into the page
+// raw, and Chromium ran the handler). For each field of two committed folders (one with adaptive
+// seeds, one with the published baselines), one at a time, in each kind of place the field takes
+// (array indices folded, so /cells/0/seeds/3/final stands for every seed's final): the field
+// becomes a hostile string, and the page either is refused (a wrong type is bad input, exit 2 by
+// write_report_page) or shows it as text: no tag or handler of it survives.
+TEST(ReportPageInput, AHostileStringInAnyFieldIsShownAsTextNeverRun) {
+  const std::string hostile = "<img src=x onerror=alert(1)>\"'</script><script>alert(2)</script>";
+  int fields = 0, refused = 0;
+  for (const char* name : {"paper-flow-decided", "extension-flow"}) {
+    ReportFolder folder = read_report_folder(fs::path(RAPID_SOURCE_DIR) / "results" / name,
+                                             fs::path(RAPID_SOURCE_DIR) / "results" / name);
+    const auto attack = [&](nlohmann::json& doc, const std::string& file) {
+      const nlohmann::json flat = doc.flatten();
+      std::set<std::string> seen;
+      for (const auto& [pointer, value] : flat.items()) {
+        const std::string kind = std::regex_replace(pointer, std::regex("/[0-9]+(/|$)"), "/#$1");
+        if (!seen.insert(kind).second) continue;
+        const nlohmann::json::json_pointer where(pointer);
+        const nlohmann::json original = doc[where];
+        doc[where] = hostile;
+        ++fields;
+        try {
+          const std::string page = report_page_html(folder);
+          EXPECT_EQ(page.find("<img src=x"), std::string::npos) << name << " " << file << pointer;
+          EXPECT_EQ(page.find("<script>alert"), std::string::npos) << name << " " << file << pointer;
+        } catch (const nlohmann::json::exception&) {
+          ++refused;
+        }
+        doc[where] = original;
+      }
+    };
+    attack(folder.summary, "summary.json");
+    attack(folder.grid_document, "grid.json");
+    if (folder.manifest) attack(*folder.manifest, "sweep.json");
+  }
+  EXPECT_GT(fields, 300);
+  std::cout << fields << " kinds of field made hostile; " << refused << " refused as the wrong type, the rest shown as text\n";
+}
+
+// A field of the wrong type is bad input: one line naming the file, exit 2, no page.
+TEST(ReportPageInput, AWrongTypedFieldIsBadInput) {
+  testing::ScratchDir scratch;
+  const fs::path copy = scratch.path() / "x";
+  fs::copy(fs::path(RAPID_SOURCE_DIR) / "results" / "slow-start-merge", copy, fs::copy_options::recursive);
+  fs::remove(copy / "report.html");
+  nlohmann::json summary = nlohmann::json::parse(report_test::read_text(copy / "summary.json"));
+  summary["provenance"]["dirty_runs"] = "many";
+  std::ofstream(copy / "summary.json") << summary.dump();
+  const auto out = rapid_cli("summarize " + copy.string() + " --html-only", true);
+  EXPECT_EQ(out.exit_code, 2) << out.text;
+  EXPECT_EQ(std::count(out.text.begin(), out.text.end(), '\n'), 1) << out.text;
+  EXPECT_TRUE(has(out.text, "summary.json")) << out.text;
+  EXPECT_FALSE(fs::exists(copy / "report.html"));
 }
 
 }  // namespace

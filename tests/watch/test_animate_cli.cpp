@@ -3,8 +3,11 @@
 // and nothing is written.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include <nlohmann/json.hpp>
 
+#include "tests/special_files.hpp"
 #include "tests/watch/watch_test_util.hpp"
 
 namespace rapid {
@@ -68,6 +71,39 @@ TEST_F(AnimateCli, DrawsAGifAndAFrame) {
   r = run_shell(animate(trace_ + " -o " + png + " --frame 30"));
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_EQ(test::slurp(png).substr(1, 3), "PNG");
+}
+
+// The plots never write through a symlink or into a FIFO at an output's name (issue 46: a symlinked
+// animation or figure had its target replaced, a FIFO hung the plot or gave a traceback): one
+// line, exit 2, the user's file untouched; figures are checked before any is drawn.
+TEST_F(AnimateCli, PlotsRefuseOutputsThatAreNotRegularFiles) {
+  if (!has_drawing_stack()) GTEST_SKIP() << "/usr/bin/python3 lacks matplotlib or Pillow (python3-matplotlib python3-pil)";
+  const std::string dir = *scratch_ / "special";
+  std::filesystem::create_directories(dir);
+  test::spit(dir + "/victim", "precious");
+  std::filesystem::create_symlink(dir + "/victim", dir + "/linked.gif");
+  test::Run r = run_shell(animate(trace_ + " -o " + dir + "/linked.gif --max-frames 4"), true, /*stderr_only=*/true);
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_EQ(test::count_lines(r.out), 1) << r.out;
+  EXPECT_NE(r.out.find("is a symlink, not a regular file"), std::string::npos) << r.out;
+  EXPECT_EQ(test::slurp(dir + "/victim"), "precious");
+  ASSERT_TRUE(test::make_fifo(dir + "/fifo.png"));
+  r = run_shell(animate(trace_ + " -o " + dir + "/fifo.png"), true, /*stderr_only=*/true);
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("is a FIFO, not a regular file"), std::string::npos) << r.out;
+
+  // scripts/plot: a symlinked figure3b.pdf is refused before figure2 is drawn.
+  const std::string figures = *scratch_ / "figures";
+  std::filesystem::create_directories(figures);
+  test::spit(figures + "/summary.json",
+             R"({"schema": "rapid.summary/1", "algorithms": [], "grid": {"scenarios": [], "datasets": [], "algos": []}, "cells": [], "rows": []})");
+  std::filesystem::create_symlink(dir + "/victim", figures + "/figure3b.pdf");
+  r = run_shell("/usr/bin/python3 " + kPlot + " --summary " + figures + "/summary.json", true, /*stderr_only=*/true);
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_EQ(test::count_lines(r.out), 1) << r.out;
+  EXPECT_NE(r.out.find("figure3b.pdf is a symlink, not a regular file"), std::string::npos) << r.out;
+  EXPECT_EQ(test::slurp(dir + "/victim"), "precious");
+  EXPECT_FALSE(std::filesystem::exists(figures + "/figure2.png")) << "nothing is drawn when an output is refused";
 }
 
 TEST_F(AnimateCli, RefusesUnreadableAndTruncatedFiles) {
