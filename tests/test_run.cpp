@@ -343,17 +343,25 @@ TEST(RapidRun, DdpgLearnsPendulum) {
   EXPECT_GE(r["final"]["return_mean"].get<double>(), -200.0);
 }
 
-// The published RLPD (SAC, 10 critics, UTD 20) and TD3+BC learn the swing-up too: ≥ −200 at
-// 20,000 steps (published SAC and TD3 on Pendulum-v1: about −150), on half-prior batches from a
-// pendulum dataset of a DDPG reference of 4,000 decisions, on seeds no other test uses. rlpd-sac
-// learns from `medium` (returns about −900); td3-bc gets `final` (about −170), because its
-// imitation term, at the recipe's α = 2.5, holds the policy near the data it imitates (on
-// `medium` it ended at −254 on seed 72): that is the method, not a fault. rlpd-sac takes a few
-// minutes: twenty ensemble steps per decision.
+// What the published RLPD (SAC, 10 critics, UTD 20) and TD3+BC are expected to reach on the
+// swing-up from each prior dataset, and why: half of every batch from a pendulum dataset of a DDPG
+// reference of 4,000 decisions (`medium`: its T/2 actor, episode returns about −1,200, no swing-up
+// in the data; `final`: its last actor, about −490, swinging up), 20,000 decisions, seeds no other
+// test uses. Published references: SAC and TD3 on Pendulum-v1 reach about −150 at 20,000 steps
+// (rl-baselines3-zoo's benchmark), and RLPD learns from data of any quality because nothing in
+// its loss ties the policy to the data (Ball et al. 2023, §5): so rlpd-sac reaches −200 from
+// `medium`. TD3+BC's imitation term at α = 2.5 holds the policy near the data's actions (Fujimoto
+// & Gu 2021, Table 1: on the `random` datasets, whose behaviour never solves a task, TD3+BC scores
+// near that behaviour): from `final`, whose actions swing up, it reaches −200; from `medium` it
+// stays near the data, below −600. That last case is the method's limit, kept here as documented
+// behaviour: with the backbone's LayerNorm critic (before #41) it still reached −254 from
+// `medium`; TD3_BC's own critic has no LayerNorm, and with it the Q term never outweighs the
+// imitation. rlpd-sac takes a few minutes: twenty ensemble steps per decision.
 struct PendulumCase {
   const char* algo;
   const char* dataset;
   int seed;
+  bool swings_up;  // final return ≥ −200; otherwise held near the data: below −600
 };
 
 // A failing case names itself in GoogleTest's output instead of printing its bytes.
@@ -361,10 +369,10 @@ void PrintTo(const PendulumCase& c, std::ostream* os) {
   *os << c.algo << " on " << c.dataset << ", seed " << c.seed;
 }
 
-class PublishedBaselineLearnsPendulum : public ::testing::TestWithParam<PendulumCase> {};
+class PublishedBaselineOnPendulum : public ::testing::TestWithParam<PendulumCase> {};
 
-TEST_P(PublishedBaselineLearnsPendulum, ReachesMinus200At20000Steps) {
-  const auto [algo, dataset, seed] = GetParam();
+TEST_P(PublishedBaselineOnPendulum, ReachesWhatTheMethodReachesFromItsData) {
+  const auto [algo, dataset, seed, swings_up] = GetParam();
   ::setenv("OMP_NUM_THREADS", "1", 1);  // CTest runs tests side by side
   rapid::testing::ScratchDir dir;
   ASSERT_EQ(rapid_cli("dataset build --scenario pendulum --dir " + dir.file("d") +
@@ -375,12 +383,19 @@ TEST_P(PublishedBaselineLearnsPendulum, ReachesMinus200At20000Steps) {
   EXPECT_EQ(r["config"]["steps"], 20000);
   EXPECT_TRUE(r.contains("recipe")) << "the published recipe's keys were filled";
   EXPECT_LT(r["eval"][0]["return_mean"].get<double>(), -800.0) << "the untrained policy is poor";
-  EXPECT_GE(r["final"]["return_mean"].get<double>(), -200.0) << algo;
+  const double final_return = r["final"]["return_mean"].get<double>();
+  if (swings_up) EXPECT_GE(final_return, -200.0) << algo << " on " << dataset;
+  else EXPECT_LT(final_return, -600.0) << algo << " on " << dataset << " was expected to stay near its data";
 }
 
-INSTANTIATE_TEST_SUITE_P(RapidRun, PublishedBaselineLearnsPendulum,
-                         ::testing::Values(PendulumCase{"rlpd-sac", "medium", 71}, PendulumCase{"td3-bc", "final", 72}),
-                         [](const auto& info) { return std::string(info.param.algo) == "td3-bc" ? "td3_bc" : "rlpd_sac"; });
+INSTANTIATE_TEST_SUITE_P(RapidRun, PublishedBaselineOnPendulum,
+                         ::testing::Values(PendulumCase{"rlpd-sac", "medium", 71, true},
+                                           PendulumCase{"td3-bc", "final", 72, true},
+                                           PendulumCase{"td3-bc", "medium", 72, false}),
+                         [](const auto& info) {
+                           return std::string(info.param.algo) == "td3-bc" ? "td3_bc_" + std::string(info.param.dataset)
+                                                                            : "rlpd_sac_medium";
+                         });
 
 // rlpd-sac and td3-bc run on every driving scenario through the same command as the paper's five,
 // with their recipes filled in and recorded (a short run on a random dataset of the scenario).
