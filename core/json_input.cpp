@@ -1,5 +1,8 @@
 #include "core/json_input.hpp"
 
+#include <cstdint>
+#include <limits>
+
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -90,6 +93,16 @@ nlohmann::json read_json_input(const std::string& path, std::size_t max_bytes) {
   }
   ::close(fd);
   return parse_json_text(text);
+}
+
+std::optional<long long> json_integer(const nlohmann::json& v) {
+  if (!v.is_number_integer()) return std::nullopt;
+  if (v.is_number_unsigned()) {
+    const std::uint64_t u = v.get<std::uint64_t>();
+    if (u > static_cast<std::uint64_t>(std::numeric_limits<long long>::max())) return std::nullopt;
+    return static_cast<long long>(u);
+  }
+  return v.get<long long>();
 }
 
 std::string json_excerpt(const nlohmann::json& value, std::size_t max) {

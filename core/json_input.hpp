@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 namespace rapid {
@@ -23,6 +24,12 @@ nlohmann::json parse_json_text(const std::string& text);
 // line without the path: "is a directory", "no such file", "cannot read: …", "is larger than
 // … MiB" or what parse_json_text says.
 nlohmann::json read_json_input(const std::string& path, std::size_t max_bytes = kMaxJsonBytes);
+
+// `v` as a whole number when it is a JSON integer that a long long holds; nullopt for anything
+// else. Integers at or beyond 2^63 are kept by nlohmann as unsigned, and get<int>() or
+// get<long long>() would wrap them (2^63 to 0 or to a negative number) and pass any range check:
+// every reader of a user's whole number asks this first.
+std::optional<long long> json_integer(const nlohmann::json& v);
 
 // A JSON value as an error message may quote it: its dump, cut to `max` characters.
 std::string json_excerpt(const nlohmann::json& value, std::size_t max = 60);

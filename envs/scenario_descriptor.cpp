@@ -112,9 +112,9 @@ class Reader {
   int integer(const json& o, const std::string& key, const std::string& where, int fallback, int lo, int hi) const {
     if (!o.contains(key)) return fallback;
     const json& v = o.at(key);
-    if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi)
-      fail(where, "must be a whole number from " + std::to_string(lo) + " to " + std::to_string(hi));
-    return v.get<int>();
+    const std::optional<long long> i = json_integer(v);
+    if (!i || *i < lo || *i > hi) fail(where, "must be a whole number from " + std::to_string(lo) + " to " + std::to_string(hi));
+    return static_cast<int>(*i);
   }
 
   // A path relative to the descriptor's folder, which must name an existing file.
@@ -209,9 +209,9 @@ void read_setting(ScenarioSettings& s, const std::string& key, const json& v) {
     field = v.get<double>();
   };
   auto integer = [&](int& field) {
-    if (!v.is_number_integer() || std::abs(v.get<long long>()) > 1'000'000'000LL)
-      Reader::fail("settings." + key, "must be a whole number");
-    field = v.get<int>();
+    const std::optional<long long> i = json_integer(v);
+    if (!i || std::abs(*i) > 1'000'000'000LL) Reader::fail("settings." + key, "must be a whole number");
+    field = static_cast<int>(*i);
   };
   auto text = [&](std::string& field) {
     if (!v.is_string()) Reader::fail("settings." + key, "must be a string");

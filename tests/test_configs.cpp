@@ -129,6 +129,15 @@ TEST(DefaultConfigs, MessagesNameTheKeyAndWhatItAccepts) {
   EXPECT_EQ(message({{"steps", "many"}}), "--set: config key 'steps' expects an integer, got \"many\"");
   EXPECT_EQ(message({{"critic_hidden", {64, 0}}}), "--set: config key 'critic_hidden' entries must each be positive, got [64,0]");
   EXPECT_EQ(message({{"stepz", 3}}), "--set: unknown config key 'stepz'");
+  // Integers at or beyond 2^63 are nlohmann's unsigned numbers; read as an int they wrapped to 0
+  // and passed every range check (issue 46: traffic_warmup=9223372036854775808 ran with none).
+  const nlohmann::json huge = nlohmann::json::parse("9223372036854775808");
+  EXPECT_EQ(message({{"steps", huge}}),
+            "--set: config key 'steps' expects an integer from -9223372036854775808 to 9223372036854775807, got 9223372036854775808");
+  EXPECT_EQ(message({{"batch_size", nlohmann::json::parse("4294967296")}}),
+            "--set: config key 'batch_size' expects an integer from -2147483648 to 2147483647, got 4294967296");
+  EXPECT_EQ(message({{"critic_hidden", {64, huge}}}),
+            "--set: config key 'critic_hidden' expects a list of integers from -2147483648 to 2147483647, got [64,9223372036854775808]");
 }
 
 // A key that only some scenarios have (the driving scenarios' traffic, say) is required there,

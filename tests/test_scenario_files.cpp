@@ -176,6 +176,10 @@ TEST_F(ScenarioFile, AWrongDescriptorIsRefusedNamingTheFieldBeforeAnythingIsWrit
        "rewards.mine.jerk: unknown reward term (expected one of offset, gap, failed_lane_change, collision)"},
       {"a negative horizon", [](nlohmann::json& d, const fs::path&) { d["settings"]["horizon"] = -5; },
        "settings: horizon: must be in [1, 100000]"},
+      // 2^63 is kept unsigned by the JSON reader; read as an int it wrapped to 0 (issue 46).
+      {"a warm-up of 2^63 steps",
+       [](nlohmann::json& d, const fs::path&) { d["settings"]["traffic_warmup"] = nlohmann::json::parse("9223372036854775808"); },
+       "settings.traffic_warmup: must be a whole number"},
       {"an unknown neighbour lane",
        [](nlohmann::json& d, const fs::path&) { d["observation"]["neighbours"] = {"current", "behind"}; },
        "observation.neighbours[1]: unknown neighbour lane \"behind\""},

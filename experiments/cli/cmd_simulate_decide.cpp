@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "core/atomic_file.hpp"
+#include "experiments/cli/checks.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
 #include "experiments/report/decide_simulation.hpp"
@@ -51,7 +52,7 @@ Command add_simulate_decide_command(CLI::App& parent) {
       "simulate-decide", "Simulate --decide against fixed designs from a sweep's own per-seed results (runs and verdicts)");
   sub->add_option("sweep", o->sweep, "a sweep folder with its records")->required();
   sub->add_option("--experiments", o->experiments, "simulated experiments (default 2000)")->check(CLI::Range(1, 1000000));
-  sub->add_option("--seed", o->seed, "the simulation's random seed (default 1)");
+  sub->add_option("--seed", o->seed, "the simulation's random seed (default 1)")->check(seed_validator());
   sub->add_option("--max-seeds", o->plan.max_seeds, "as for rapid sweep --decide (default 30)")->check(CLI::Range(2, 1000));
   sub->add_option("--block", o->plan.block, "as for rapid sweep --decide (default 5)")->check(CLI::Range(1, 1000));
   return {sub, [o] { return simulate_decide_command(*o); }};

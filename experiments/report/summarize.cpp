@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
 
 #include "algos/registry.hpp"
 #include "core/hash.hpp"
+#include "core/json_input.hpp"
 #include "experiments/report/adaptive_seeds.hpp"
 #include "experiments/report/cell_records.hpp"
 #include "experiments/report/claims.hpp"
@@ -242,6 +246,34 @@ void build_run_costs(Summary& s) {
 
 }  // namespace
 
+namespace fs = std::filesystem;
+
+namespace {
+
+// decide.json of a folder `rapid sweep --decide` has looked at, or nullopt when there is none. Read
+// strictly: its looks_max sets the level α / K of every test, so an unreadable file, or one without
+// a whole looks_max of at least 1, is refused (std::invalid_argument naming the file) instead of
+// quietly deciding at α (issue 46).
+std::optional<nlohmann::json> read_decide_plan(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::exists(fs::symlink_status(path, ec))) return std::nullopt;
+  nlohmann::json plan;
+  try {
+    plan = read_json_input(path.string());
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(path.string() + ": " + e.what() + " (it says how many looks --decide took, which sets α / K)");
+  }
+  const std::optional<long long> looks =
+      plan.is_object() && plan.contains("looks_max") ? json_integer(plan["looks_max"]) : std::nullopt;
+  if (!looks || *looks < 1 || *looks > 1000)
+    throw std::invalid_argument(path.string() + ": looks_max must be a whole number from 1 to 1000, got " +
+                                (plan.is_object() && plan.contains("looks_max") ? json_excerpt(plan["looks_max"]) : "none") +
+                                " (it sets α / K; rapid sweep --decide writes it)");
+  return plan;
+}
+
+}  // namespace
+
 Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptions& options) {
   const SweepFolder folder = open_sweep_folder(sweep_dir);
   Summary s;
@@ -304,10 +336,13 @@ Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptio
     if (auto settings = load_decision_settings(s.grid.profile)) {
       // A folder that `rapid sweep --decide` has looked at decides at α / (its largest number of looks),
       // and its reports say what the looks spent.
-      if (const auto plan = read_json_file(folder.path(sweep_files::kDecide));
-          plan && plan->contains("looks_max") && (*plan)["looks_max"].is_number_integer() && (*plan)["looks_max"] > 0) {
-        settings->looks = (*plan)["looks_max"].get<int>();
-        s.adaptive_seeds = adaptive_seeds_summary(*plan, s.cells, s.provenance);
+      if (const std::optional<nlohmann::json> plan = read_decide_plan(folder.path(sweep_files::kDecide))) {
+        settings->looks = static_cast<int>(*json_integer((*plan)["looks_max"]));
+        try {
+          s.adaptive_seeds = adaptive_seeds_summary(*plan, s.cells, s.provenance);
+        } catch (const nlohmann::json::exception& e) {
+          throw std::invalid_argument(folder.path(sweep_files::kDecide).string() + ": a field has the wrong type: " + e.what());
+        }
       }
       s.decisions = decide_claims(s, *settings);
       s.baseline_decisions = decide_published_baselines(s, *settings);

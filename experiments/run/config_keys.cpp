@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 #include <type_traits>
 
@@ -25,6 +27,18 @@ constexpr Bounds at_least(double x) { return {.lo = x}; }
   throw std::invalid_argument("config key '" + key + "' " + problem);
 }
 
+// Whether `v` is a JSON integer that T holds (json_integer: never one wrapped from 2^63 or more).
+template <typename T>
+bool fits(const nlohmann::json& v) {
+  const std::optional<long long> i = json_integer(v);
+  return i && *i >= std::numeric_limits<T>::min() && *i <= std::numeric_limits<T>::max();
+}
+
+template <typename T>
+std::string range_text() {
+  return " from " + std::to_string(std::numeric_limits<T>::min()) + " to " + std::to_string(std::numeric_limits<T>::max());
+}
+
 // The JSON value in the type of the key's field, or a message naming that type.
 template <typename T>
 T typed(const std::string& key, const nlohmann::json& v) {
@@ -35,11 +49,14 @@ T typed(const std::string& key, const nlohmann::json& v) {
     if (!std::isfinite(v.get<double>())) reject(key, "expects a finite number, got " + json_excerpt(v));
   } else if constexpr (std::is_integral_v<T>) {
     if (!v.is_number_integer()) reject(key, "expects an integer, got " + json_excerpt(v));
+    if (!fits<T>(v)) reject(key, "expects an integer" + range_text<T>() + ", got " + json_excerpt(v));
   } else {
     static_assert(std::is_same_v<T, std::vector<int>>);
     if (!v.is_array()) reject(key, "expects a list of integers, got " + json_excerpt(v));
-    for (const auto& e : v)
+    for (const auto& e : v) {
       if (!e.is_number_integer()) reject(key, "expects a list of integers, got " + json_excerpt(v));
+      if (!fits<int>(e)) reject(key, "expects a list of integers" + range_text<int>() + ", got " + json_excerpt(v));
+    }
     if (v.empty()) reject(key, "needs at least one entry");
   }
   return v.get<T>();

@@ -4,9 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/rng.hpp"
 #include "experiments/report/claims_markdown.hpp"
@@ -107,6 +110,37 @@ TEST_F(DecisionsTest, ClearDifferencesConfirmAndRefute) {
     EXPECT_EQ(c.outcome, ComparisonOutcome::kEquivalent);
   }
   EXPECT_EQ(claim(small, "C2").verdict, "REFUTED") << claim(small, "C2").reason;
+}
+
+// decide.json's looks_max sets the level α / K of every test of a --decide folder. One that cannot be
+// read, or says no whole number of looks, is refused naming the file; it once made summarize
+// decide at α, quietly (issue 46).
+TEST_F(DecisionsTest, AnUnreadableDecideFileIsRefusedNotDecidedAtAlpha) {
+  make([](const std::string&, const std::string& algo) { return algo == "rapid-rl" ? 200.0 : 160.0; }, 10, 2.0);
+  const std::filesystem::path decide = sweep / "decide.json";
+  const auto refusal = [&](const std::string& text) {
+    std::ofstream(decide) << text;
+    try {
+      build_summary(sweep);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  for (const std::string bad : {"{\"looks_max\": ", "[]", "{}", "{\"looks_max\": 0}", "{\"looks_max\": -3}",
+                                "{\"looks_max\": \"5\"}", "{\"looks_max\": 9223372036854775808}"}) {
+    const std::string message = refusal(bad);
+    EXPECT_EQ(message.rfind(decide.string() + ": ", 0), 0u) << bad << ": " << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+  // A good one decides at α / 5.
+  std::ofstream(decide) << "{\"looks_max\": 5, \"initial_seeds\": [0], \"block\": 5, \"max_seeds\": 30, \"looks\": []}";
+  const Summary s = build_summary(sweep);
+  ASSERT_TRUE(s.decisions.has_value());
+  EXPECT_DOUBLE_EQ(s.decisions->settings.alpha_per_look(), s.decisions->settings.alpha / 5);
+  // And without the file, at α.
+  std::filesystem::remove(decide);
+  EXPECT_DOUBLE_EQ(build_summary(sweep).decisions->settings.alpha_per_look(), s.decisions->settings.alpha);
 }
 
 // rlpd-sac and td3-bc are not the paper's: RAPID-RL is compared with them in every row as a family of

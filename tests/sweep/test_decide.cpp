@@ -76,6 +76,10 @@ TEST(Decide, AddsBlocksOfSeedsToUndecidedCellsAndResumesWithoutRerunning) {
   EXPECT_NE(md.find("| --decide (2 seeds, blocks of 1 up to 4) |"), std::string::npos) << md;
   const Result below = run_rapid("simulate-decide " + sweep.string() + " --max-seeds 1");
   EXPECT_EQ(below.exit_code, 2) << below.output;
+  // A negative seed once became 2^64 − 1 (issue 46).
+  const Result negative = run_rapid("simulate-decide " + sweep.string() + " --seed -1");
+  EXPECT_EQ(negative.exit_code, 2) << negative.output;
+  EXPECT_NE(negative.output.find("--seed: must be a non-negative integer, got '-1'"), std::string::npos) << negative.output;
   const Result not_a_sweep = run_rapid("simulate-decide " + dir.path().string());
   EXPECT_EQ(not_a_sweep.exit_code, 2);
   EXPECT_NE(not_a_sweep.output.find("SWEEP_DIR: "), std::string::npos) << not_a_sweep.output;
