@@ -1,5 +1,9 @@
 #include "core/printable.hpp"
 
+#include <cctype>
+
+#include <algorithm>
+
 #include <cstdio>
 
 namespace rapid {
@@ -18,6 +22,19 @@ std::string printable(std::string_view text) {
     out += escaped;
   }
   return out;
+}
+
+bool is_safe_name(std::string_view name) {
+  return !name.empty() && name != "." && name != ".." && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-';
+  });
+}
+
+bool is_plain_text(std::string_view text) {
+  static constexpr std::string_view kPunctuation = " -_.,()+/:'";
+  return !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || kPunctuation.find(c) != std::string_view::npos;
+  });
 }
 
 std::string comma_joined(const std::vector<std::string>& names) {

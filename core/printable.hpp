@@ -11,6 +11,16 @@ namespace rapid {
 // `text` with every control byte (below 0x20, and 0x7f) written as \xNN; other bytes unchanged.
 std::string printable(std::string_view text);
 
+// A name that may name a folder and appear in every report format (LaTeX, markdown, CSV, HTML)
+// as it is: non-empty, not "." or "..", only letters, digits, '.', '_' and '-' (a grid's name, a
+// scenario's name).
+bool is_safe_name(std::string_view name);
+
+// Display text for the reports: non-empty, only letters, digits, spaces and - _ . , ( ) + / : '
+// (a scenario's display name). None of LaTeX's, markdown's, CSV's or HTML's special characters
+// (\ { } ^ ~ $ & % # | < > " ` = @ and line breaks) can reach a table through it (issue 46).
+bool is_plain_text(std::string_view text);
+
 // "a, b, c": the names a message lists as the accepted choices.
 std::string comma_joined(const std::vector<std::string>& names);
 

@@ -270,6 +270,11 @@ ScenarioDescriptor read_descriptor(const std::string& path) {
   d.file = file.string();
   d.name = r.text(doc, "name", "name");
   d.display_name = r.text(doc, "display_name", "display_name", d.name, false);
+  // The name names folders (jobs/<name>/…); both reach every report format.
+  if (!is_safe_name(d.name)) Reader::fail("name", "must use only letters, digits, '.', '_' and '-' (it names folders)");
+  if (!is_plain_text(d.display_name))
+    Reader::fail("display_name", "may use only letters, digits, spaces and - _ . , ( ) + / : ' (it is printed in LaTeX, "
+                                 "markdown, CSV and HTML tables)");
 
   const json& networks = r.object(doc, "networks", "networks", {});
   if (networks.empty()) Reader::fail("networks", "must name at least one network");

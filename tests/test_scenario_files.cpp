@@ -183,6 +183,14 @@ TEST_F(ScenarioFile, AWrongDescriptorIsRefusedNamingTheFieldBeforeAnythingIsWrit
       {"an unknown neighbour lane",
        [](nlohmann::json& d, const fs::path&) { d["observation"]["neighbours"] = {"current", "behind"}; },
        "observation.neighbours[1]: unknown neighbour lane \"behind\""},
+      // Names reach folder names and every report format (issue 46: a display name gave table.tex
+      // \input{/etc/hostname}, and markdown a raw <script>).
+      {"a name that climbs out of its folder", [](nlohmann::json& d, const fs::path&) { d["name"] = "../elsewhere"; },
+       "name: must use only letters, digits"},
+      {"a display name that is LaTeX", [](nlohmann::json& d, const fs::path&) { d["display_name"] = "\\input{/etc/hostname}"; },
+       "display_name: may use only letters, digits, spaces"},
+      {"a display name that is HTML", [](nlohmann::json& d, const fs::path&) { d["display_name"] = "<script>x</script> | y"; },
+       "display_name: may use only letters, digits, spaces"},
       {"a misspelt field", [](nlohmann::json& d, const fs::path&) { d["obsevation"] = nlohmann::json::object(); },
        "obsevation: unknown field"},
       {"a hook nobody wrote", [](nlohmann::json& d, const fs::path&) { d["hook"] = "roadworks"; },

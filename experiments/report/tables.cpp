@@ -48,11 +48,19 @@ std::string status_line(const Summary& s) {
   return line;
 }
 
+// Every character LaTeX treats as a command: the input checks keep names plain (is_plain_text),
+// and this keeps a table safe whatever reaches it.
 std::string latex_escape(const std::string& text) {
   std::string out;
   for (char c : text) {
-    if (c == '_' || c == '&' || c == '%' || c == '#' || c == '$') out += '\\';
-    out += c;
+    switch (c) {
+      case '\\': out += "\\textbackslash{}"; break;
+      case '^': out += "\\textasciicircum{}"; break;
+      case '~': out += "\\textasciitilde{}"; break;
+      case '\n': case '\r': out += ' '; break;
+      case '_': case '&': case '%': case '#': case '$': case '{': case '}': out += '\\'; out += c; break;
+      default: out += c;
+    }
   }
   return out;
 }
@@ -297,14 +305,14 @@ std::string table_latex(const Summary& s) {
          "where only k of N seeds finished.}\n"
       << "\\begin{tabular}{ll" << (s.grid.axes.empty() ? "" : "l") << std::string(algos.size(), 'c')
       << "}\n\\toprule\nScenario & Dataset" << (s.grid.axes.empty() ? "" : " & Axes");
-  for (const auto& a : algos) out << " & " << algo_display_name(a);
+  for (const auto& a : algos) out << " & " << latex_escape(algo_display_name(a));
   out << " \\\\\n";
   std::string previous;
   for (const TableRow& row : s.rows) {
     const bool first = row.scenario != previous;
     previous = row.scenario;
     if (first) out << "\\midrule\n" << latex_escape(scenario_display_name(row.scenario));
-    out << " & " << dataset_display_name(row.dataset);
+    out << " & " << latex_escape(dataset_display_name(row.dataset));
     if (!s.grid.axes.empty()) out << " & " << latex_escape(point_text(row.axis));
     for (const auto& a : algos) {
       const CellSummary* c = s.column_cell(row, a);

@@ -65,10 +65,7 @@ class GridChecker {
     const json& v = doc["name"];
     if (!v.is_string()) fail("name", "expected a string, got " + json_excerpt(v));
     const std::string s = v.get<std::string>();
-    const bool safe = !s.empty() && s != "." && s != ".." && std::all_of(s.begin(), s.end(), [](char c) {
-      return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-';
-    });
-    if (!safe) fail("name", "'" + (s.size() > 60 ? s.substr(0, 60) + "…" : s) + "' must be non-empty and use only letters, digits, '.', '_' and '-'");
+    if (!is_safe_name(s)) fail("name", "'" + (s.size() > 60 ? s.substr(0, 60) + "…" : s) + "' must be non-empty and use only letters, digits, '.', '_' and '-'");
     // It names the default sweep folder, so it must fit a file name (255 bytes) with room to spare.
     if (s.size() > kMaxGridNameLength)
       fail("name", "is " + std::to_string(s.size()) + " characters long; at most " + std::to_string(kMaxGridNameLength));
