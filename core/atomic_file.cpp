@@ -33,14 +33,23 @@ int remove_leftover_temporaries(const std::vector<std::string>& paths) {
   return removed;
 }
 
+namespace {
+
+// What a file of this mode is, when it is not a regular file.
+const char* kind_of(mode_t mode) {
+  if (S_ISLNK(mode)) return "a symlink";
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+  return "a socket";
+}
+
+}  // namespace
+
 std::string not_a_regular_file(const std::string& path) {
   struct stat st {};
   if (::lstat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return "";
-  if (S_ISLNK(st.st_mode)) return "a symlink";
-  if (S_ISDIR(st.st_mode)) return "a folder";
-  if (S_ISFIFO(st.st_mode)) return "a FIFO";
-  if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) return "a device";
-  return "a socket";
+  return kind_of(st.st_mode);
 }
 
 void write_file_atomic(const std::string& path, std::string_view content) {
@@ -88,7 +97,13 @@ void write_file_atomic(const std::string& path, std::string_view content) {
   }
 }
 
-std::string read_file(const std::string& path) {
+std::string read_file(const std::string& path, std::uintmax_t max_bytes) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) throw std::runtime_error("cannot read " + path + ": " + std::strerror(errno));
+  if (!S_ISREG(st.st_mode))
+    throw std::runtime_error("cannot read " + path + ": it is " + kind_of(st.st_mode) + ", not a regular file");
+  if (static_cast<std::uintmax_t>(st.st_size) > max_bytes)
+    throw std::runtime_error("cannot read " + path + ": it is larger than " + std::to_string(max_bytes >> 20) + " MiB");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot read " + path + ": " + std::strerror(errno));
   std::ostringstream ss;

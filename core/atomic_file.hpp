@@ -2,6 +2,7 @@
 // write a temporary file beside it, flush it to disk, then rename it over the target.
 #pragma once
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -37,7 +38,12 @@ std::string not_a_regular_file(const std::string& path);
 // the job starts): a live writer's temporary cannot be told from a dead one's.
 int remove_leftover_temporaries(const std::vector<std::string>& paths);
 
-// Reads a whole file; throws std::runtime_error naming the path if it cannot be read.
-std::string read_file(const std::string& path);
+// Far beyond any file the harness reads whole (its largest datasets are tens of MB).
+inline constexpr std::uintmax_t kMaxReadBytes = std::uintmax_t{1} << 30;
+
+// Reads a whole regular file of at most `max_bytes` (a symlink to one is fine); throws
+// std::runtime_error naming the path if it cannot be read, is not a regular file (a FIFO would
+// block forever, a device such as /dev/zero never end: issue 46) or is larger.
+std::string read_file(const std::string& path, std::uintmax_t max_bytes = kMaxReadBytes);
 
 }  // namespace rapid

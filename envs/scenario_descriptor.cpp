@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -138,11 +137,24 @@ class Reader {
   fs::path dir_;
 };
 
-// The value of attribute `name` in one XML start tag's text, or "".
+// The value of attribute `name` in one XML start tag's text, or "". Scanned by hand: libstdc++'s
+// std::regex recurses once per character of a match, so a route of 10,000 edges (a 50 kB
+// attribute) overflowed the stack (issue 46).
 std::string attribute(const std::string& tag, const std::string& name) {
-  const std::regex re("\\s" + name + "\\s*=\\s*\"([^\"]*)\"");
-  std::smatch m;
-  return std::regex_search(tag, m, re) ? m[1].str() : std::string();
+  const auto space = [](char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; };
+  for (auto at = tag.find(name); at != std::string::npos; at = tag.find(name, at + 1)) {
+    if (at == 0 || !space(tag[at - 1])) continue;
+    std::size_t i = at + name.size();
+    while (i < tag.size() && space(tag[i])) ++i;
+    if (i >= tag.size() || tag[i] != '=') continue;
+    ++i;
+    while (i < tag.size() && space(tag[i])) ++i;
+    if (i >= tag.size() || tag[i] != '"') continue;
+    const auto close = tag.find('"', i + 1);
+    if (close == std::string::npos) return "";
+    return tag.substr(i + 1, close - i - 1);
+  }
+  return "";
 }
 
 // The start tags <`element` …> of an XML text (SUMO's files are flat enough for this: the

@@ -126,6 +126,23 @@ TEST_F(ScenarioFile, AGridSweepsItByItsNameAndAnEditedFileMakesItsRecordsStale) 
   EXPECT_EQ(nlohmann::json::parse(status.text).at("counts").at("stale"), 2) << status.text;
 }
 
+// `dataset build --scenario PATH --dir D` writes under D/<the descriptor's own name>/ whatever the
+// path (issue 46: a path through '..' wrote beside the descriptor, D stayed empty), and `rapid run`
+// finds the datasets there by the same path.
+TEST_F(ScenarioFile, DatasetsOfAFileGoUnderDirByItsName) {
+  descriptor_file();
+  fs::create_directories(dir_ / "sub");
+  const std::string through = (dir_ / "sub" / ".." / "road.json").string();
+  const std::string data = (dir_ / "data").string();
+  const auto built = rapid_cli("dataset build --scenario " + through + " --dir " + data +
+                                   " --reference-only --set steps=320 --set warmup_steps=0 --set batch_size=16 --set eval_every=320",
+                               true);
+  ASSERT_EQ(built.exit_code, 0) << built.text;
+  EXPECT_TRUE(fs::exists(dir_ / "data" / "two-lane" / "reference" / "record.json"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_ / "data"), fs::directory_iterator()), 1) << "only data/two-lane";
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "road.json"));
+}
+
 TEST_F(ScenarioFile, ARewardVariantOfItsOwnWeighsTheTermsItSays) {
   descriptor_["rewards"] = {{"gentle", {{"collision", 2}, {"offset", 0.3}}}};
   descriptor_["settings"]["reward"] = "gentle";
@@ -191,6 +208,17 @@ TEST_F(ScenarioFile, AWrongDescriptorIsRefusedNamingTheFieldBeforeAnythingIsWrit
        "display_name: may use only letters, digits, spaces"},
       {"a display name that is HTML", [](nlohmann::json& d, const fs::path&) { d["display_name"] = "<script>x</script> | y"; },
        "display_name: may use only letters, digits, spaces"},
+      // A 50 kB attribute once overflowed the stack of the attribute scan (SIGSEGV, issue 46).
+      {"a route of 10,000 edges beside a missing one",
+       [](nlohmann::json& d, const fs::path& file) {
+         std::string edges;
+         for (int i = 0; i < 10000; ++i) edges += i ? " road" : "road";
+         write(file.parent_path() / "long.rou.xml",
+               "<routes><vType id=\"car\" length=\"5\"/><route id=\"long\" edges=\"" + edges + "\"/></routes>");
+         d["networks"]["default"]["routes"] = "long.rou.xml";
+         d["ego"]["route"] = "detour";
+       },
+       "ego.route: route 'detour' is not in"},
       {"a misspelt field", [](nlohmann::json& d, const fs::path&) { d["obsevation"] = nlohmann::json::object(); },
        "obsevation: unknown field"},
       {"a hook nobody wrote", [](nlohmann::json& d, const fs::path&) { d["hook"] = "roadworks"; },

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.hpp"
+#include "core/json_input.hpp"
 #include "envs/scenario_descriptor.hpp"
 #include "experiments/cli/errors.hpp"
 #include "experiments/cli/output_folder.hpp"
@@ -19,10 +20,13 @@ namespace {
 // The run record behind --settings-from: RUN/record.json or the file itself.
 nlohmann::json read_run_record(const std::string& from) {
   const fs::path path = fs::is_directory(from) ? fs::path(from) / "record.json" : fs::path(from);
-  std::ifstream in(path);
-  if (!in) throw UsageError("--settings-from: cannot read '" + path.string() + "'");
-  nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (j.is_discarded() || !j.is_object()) throw UsageError("--settings-from: '" + path.string() + "' is not a JSON object");
+  nlohmann::json j;
+  try {
+    j = read_json_input(path.string());  // bounded, and a FIFO or a device ends with a message (issue 46)
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("--settings-from: '" + path.string() + "': " + e.what());
+  }
+  if (!j.is_object()) throw UsageError("--settings-from: '" + path.string() + "' is not a JSON object");
   if (j.value("schema", "") != "rapid.run/1")
     throw UsageError("--settings-from: '" + path.string() + "' is not a run record (schema rapid.run/1)");
   return j;

@@ -14,6 +14,7 @@
 #include "core/mlp.hpp"
 #include "core/rng.hpp"
 #include "envs/env.hpp"
+#include "envs/scenario_descriptor.hpp"
 #include "experiments/run/job.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/run/run_config.hpp"
@@ -213,6 +214,9 @@ std::string reference_problem(const DatasetFolder& folder, long budget, long ref
       return "the reference checkpoint " + path + " is missing, unreadable or holds an actor without updates";
   return "";
 }
+
+DatasetFolder::DatasetFolder(const std::string& root, const std::string& scenario)
+    : dir(root + "/" + (is_scenario_file(scenario) ? scenario_descriptor(scenario)->name : scenario)) {}
 
 std::string datasets_problem(const DatasetFolder& folder, const std::vector<std::string>& names,
                              const std::string& scenario, const RunConfig& config) {

@@ -26,7 +26,11 @@ const std::vector<std::string>& dataset_names();
 // initial.h5, medium.h5, final.h5, final+medium.h5, progress.json while collecting, and
 // build.json, written last, saying the datasets are complete.
 struct DatasetFolder {
-  DatasetFolder(const std::string& root, const std::string& scenario) : dir(root + "/" + scenario) {}
+  // root/<scenario>: a built-in's or a registered name, or, for a descriptor given by its path, the
+  // name the descriptor gives itself (a plain name, checked when it is read), so that the folder
+  // stays under `root` whatever the path (issue 46: `--scenario ../x/scenario.json` wrote beside
+  // the descriptor instead of under --dir).
+  DatasetFolder(const std::string& root, const std::string& scenario);
   std::string dir;
   std::string reference() const { return dir + "/reference"; }
   std::string dataset(const std::string& name) const { return dir + "/" + name + ".h5"; }

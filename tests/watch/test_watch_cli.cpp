@@ -156,5 +156,20 @@ TEST(WatchCli, ARecordThatIsNotARegularFileOrCannotBeWrittenIsRefused) {
             "rapid: error: --record: '" + s / "fifo.json" + "' is a FIFO, not a regular file; name a new or regular file\n");
 }
 
+// Inputs that are not regular files end with a message instead of reading forever (issue 46: a
+// FIFO as --policy or --settings-from blocked, /dev/zero as --policy read until memory ran out).
+// `timeout` turns a hang back into a failure of this test.
+TEST(WatchCli, InputsThatAreNotRegularFilesAreRefusedNotReadForever) {
+  Scratch s;
+  ASSERT_TRUE(test::make_fifo(s / "fifo.ckpt"));
+  ASSERT_TRUE(test::make_fifo(s / "fifo.json"));
+  expect_usage_error("rollout --scenario merge --policy " + s / "fifo.ckpt" + " --episodes 1", "--policy", s, "timeout 60 ");
+  expect_usage_error("rollout --scenario merge --policy zero --episodes 1 --settings-from " + s / "fifo.json",
+                     "--settings-from", s, "timeout 60 ");
+  const test::Run r = run_shell("timeout 60 " + rapid("rollout --scenario merge --policy /dev/zero --episodes 1"));
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.out.find("is a device, not a regular file"), std::string::npos) << r.out;
+}
+
 }  // namespace
 }  // namespace rapid
