@@ -90,3 +90,25 @@ TEST_F(AtomicFile, NeverWritesThroughWhatIsPlantedAtItsTemporarysName) {
   EXPECT_TRUE(fs::is_symlink(stem)) << "what was planted is not ours to remove";
   EXPECT_FALSE(fs::exists(stem + ".2")) << "the temporary was renamed into place";
 }
+
+// Reading a whole file is bounded and never blocks (issue 46: a 5 GB sparse network file was read
+// whole into memory; a FIFO blocked forever): each is refused with a message naming the path.
+TEST_F(AtomicFile, ReadingRefusesHugeFilesAndWhatIsNotARegularFile) {
+  { std::ofstream(file("sparse")); }
+  fs::resize_file(file("sparse"), kMaxReadBytes + 1);  // sparse: no disk used
+  ASSERT_TRUE(test::make_fifo(file("fifo")));
+  const auto message = [](const std::string& path) {
+    try {
+      read_file(path);
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("read");
+  };
+  EXPECT_EQ(message(file("sparse")), "cannot read " + file("sparse") + ": it is larger than 1024 MiB");
+  EXPECT_EQ(message(file("fifo")), "cannot read " + file("fifo") + ": it is a FIFO, not a regular file");
+  EXPECT_EQ(message(dir.string()), "cannot read " + dir.string() + ": it is a folder, not a regular file");
+  std::ofstream(file("small")) << "abc";
+  fs::create_symlink(file("small"), file("link"));
+  EXPECT_EQ(read_file(file("link")), "abc") << "a symlink to a regular file is read";
+}
