@@ -69,7 +69,7 @@ TEST(RapidRun, WritesACompleteRecord) {
   EXPECT_EQ(r["cell"], nlohmann::json({{"scenario", "pendulum"}, {"dataset", nullptr}, {"algo", "ddpg"}, {"seed", 3}}));
   EXPECT_EQ(r["config"]["steps"], 1200);
   EXPECT_EQ(r["config_hash"].get<std::string>().size(), 16u);
-  for (const char* k : {"code_revision", "code_dirty", "sumo_version", "compiler", "host", "start_time", "end_time"})
+  for (const char* k : {"code_revision", "code_dirty", "sumo_version", "compiler", "host", "cpu", "start_time", "end_time"})
     EXPECT_TRUE(r["provenance"].contains(k)) << k;
   // Evaluations at step 0, near each multiple of eval_every, and at the end.
   ASSERT_GE(r["eval"].size(), 4u);

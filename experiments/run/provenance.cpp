@@ -4,6 +4,8 @@
 
 #include <chrono>
 #include <ctime>
+#include <fstream>
+#include <string>
 #include <libsumo/libsumo.h>
 
 #include "revision.hpp"
@@ -30,6 +32,22 @@ std::string utc_now_iso8601() {
   return buf;
 }
 
+namespace {
+
+// /proc/cpuinfo's first "model name": a run's bits have been seen to differ between CPU models
+// at the same instruction-set level (docs/design.md §Determinism), so a record says which ran it.
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(line.find_first_not_of(" \t", colon + 1));
+    }
+  return "unknown";
+}
+
+}  // namespace
+
 nlohmann::json provenance_json() {
   char host[256] = {0};
   ::gethostname(host, sizeof host - 1);
@@ -38,7 +56,8 @@ nlohmann::json provenance_json() {
           {"sumo_version", sumo_version()},
           {"compiler", std::string("g++ ") + __VERSION__},
           {"arch_flags", RAPID_ARCH_FLAGS_STRING},
-          {"host", host}};
+          {"host", host},
+          {"cpu", cpu_model()}};
 }
 
 }  // namespace rapid
