@@ -32,10 +32,6 @@ std::string utc_now_iso8601() {
   return buf;
 }
 
-namespace {
-
-// /proc/cpuinfo's first "model name": a run's bits have been seen to differ between CPU models
-// at the same instruction-set level (docs/design.md §Determinism), so a record says which ran it.
 std::string cpu_model() {
   std::ifstream in("/proc/cpuinfo");
   for (std::string line; std::getline(in, line);)
@@ -45,8 +41,6 @@ std::string cpu_model() {
     }
   return "unknown";
 }
-
-}  // namespace
 
 nlohmann::json provenance_json() {
   char host[256] = {0};
