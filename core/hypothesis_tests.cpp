@@ -63,6 +63,18 @@ double student_t_cdf(double t, double df) {
   return t > 0 ? 1.0 - tail : tail;
 }
 
+double student_t_quantile(double p, double df) {
+  if (!(p > 0.0 && p < 1.0) || !(df > 0.0)) return kNaN;
+  if (p < 0.5) return -student_t_quantile(1.0 - p, df);
+  double lo = 0.0, hi = 1.0;
+  while (student_t_cdf(hi, df) < p && hi < 1e12) hi *= 2.0;
+  for (int k = 0; k < 200 && hi - lo > 1e-12 * hi; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (student_t_cdf(mid, df) < p ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 double normal_cdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
 
 double normal_quantile(double p) {

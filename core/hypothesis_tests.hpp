@@ -15,6 +15,8 @@ namespace rapid {
 
 // P(T ≤ t) for Student's t with `df` > 0 degrees of freedom (df may be fractional).
 double student_t_cdf(double t, double df);
+// The t with P(T ≤ t) = p (0 < p < 1), by bisection on student_t_cdf.
+double student_t_quantile(double p, double df);
 // P(Z ≤ z) and its inverse for the standard normal.
 double normal_cdf(double z);
 double normal_quantile(double p);

@@ -32,6 +32,10 @@ TEST(HypothesisTests, AgreeWithScipy) {
   EXPECT_NEAR(student_t_cdf(1.0, 2.5), 0.7979694863608633, 1e-12);
   EXPECT_NEAR(student_t_cdf(-3.1, 12.7), 0.00432729099121874, 1e-12);
   EXPECT_NEAR(student_t_cdf(1.0, 1.0), 0.75, 1e-12);  // Cauchy: 1/2 + atan(1)/π
+  // t.ppf (scipy 1.10), the quantiles adaptive seeds' conditional power uses.
+  EXPECT_NEAR(student_t_quantile(0.975, 10), 2.2281388519649385, 1e-9);
+  EXPECT_NEAR(student_t_quantile(0.99987, 58), 3.8909714316794672, 1e-9);
+  EXPECT_NEAR(student_t_quantile(0.05, 3.5), -2.2224334936496013, 1e-9);
   const std::vector<double> a = {1, 2, 3, 4, 5}, b = {2, 4, 6, 8, 10};
   const MeanDifference d = welch_difference(a, b);
   EXPECT_NEAR(d.diff / d.se, -1.8973665961010275, 1e-12);
