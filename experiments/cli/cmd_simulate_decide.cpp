@@ -55,6 +55,7 @@ Command add_simulate_decide_command(CLI::App& parent) {
   sub->add_option("--seed", o->seed, "the simulation's random seed (default 1)")->check(seed_validator());
   sub->add_option("--max-seeds", o->plan.max_seeds, "as for rapid sweep --decide (default 30)")->check(CLI::Range(2, 1000));
   sub->add_option("--block", o->plan.block, "as for rapid sweep --decide (default 5)")->check(CLI::Range(1, 1000));
+  sub->add_option("--futility", o->plan.futility, "as for rapid sweep --decide (default 0.1)")->check(CLI::Range(0.0, 0.99));
   return {sub, [o] { return simulate_decide_command(*o); }};
 }
 

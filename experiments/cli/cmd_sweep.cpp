@@ -316,7 +316,7 @@ int sweep_of(const SweepOptions& o, const Grid& grid) {
       const SweepReport r = run_local_sweep(look_folder, look);
       return r.interrupted_by ? LookJobs::kInterrupted : r.all_ok() ? LookJobs::kDone : LookJobs::kFailed;
     };
-    const DecideState state = advance_decide(dir, o.decide_settings, run_here, std::cerr);
+    const DecideState state = advance_decide(dir, read_decide_settings(dir), run_here, std::cerr);
     if (state == DecideState::kInterrupted) return kExitInterrupted;
     if (state == DecideState::kFailed) decided_ok = false;
   }
@@ -366,12 +366,16 @@ Command add_sweep_command(CLI::App& parent) {
                 "with --reuse-datasets FROM: train the reference agents here instead of copying them, then check that "
                 "their checkpoints are byte-identical to FROM's (exit 1 naming any that differ)");
   sub->add_flag("--decide", o->decide,
-                "adaptive seeds: then add blocks of seeds to the cells of undecided comparisons until every claim is "
-                "decided or --max-seeds (docs/decisions.md)");
+                "adaptive seeds: then add blocks of seeds to the cells of the comparisons an undecided claim still "
+                "needs and can still decide, until every claim is decided or --max-seeds (docs/decisions.md)");
   sub->add_option("--max-seeds", o->decide_settings.max_seeds, "with --decide: seeds a cell may reach (default 30)")
       ->check(CLI::Range(2, 1000));
   sub->add_option("--block", o->decide_settings.block, "with --decide: seeds added per look (default 5)")
       ->check(CLI::Range(1, 1000));
+  sub->add_option("--futility", o->decide_settings.futility,
+                  "with --decide: freeze a comparison whose conditional power at --max-seeds is below this (default 0.1; "
+                  "0: never)")
+      ->check(CLI::Range(0.0, 0.99));
   sub->add_flag("--no-summary", o->no_summary, "do not refresh the reports (rapid summarize) at the end");
   sub->add_flag("--no-animations", o->no_animations, "refresh the reports without the animations");
   sub->add_option("--backend", o->backend, "where jobs run: local (this machine) or slurm (submit job arrays)");

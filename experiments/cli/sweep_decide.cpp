@@ -5,6 +5,7 @@
 #include <set>
 
 #include "core/atomic_file.hpp"
+#include "experiments/report/decide_replay.hpp"
 #include "experiments/report/summarize.hpp"
 
 namespace rapid {
@@ -43,11 +44,18 @@ void start_decide(const fs::path& sweep_dir, const Grid& grid, const DecideSetti
                   const nlohmann::json& extra) {
   const int initial = static_cast<int>(grid.seeds.size());
   nlohmann::json j = read_decide(sweep_dir);
+  // A folder whose looks began under the rule before issue #42 goes on under it: its looks so far
+  // were chosen by it (docs/decisions.md §Adaptive seeds).
+  const bool legacy = j.contains("looks") && j["looks"].is_array() && !j["looks"].empty() && !j.contains("rule");
   j["schema"] = "rapid.decide/1";
   j["initial_seeds"] = grid.seeds;
   j["block"] = settings.block;
   j["max_seeds"] = settings.max_seeds;
   j["looks_max"] = decide_looks_max(initial, settings);
+  if (!legacy) {
+    j["rule"] = look_rule_name(settings.rule);
+    j["futility"] = settings.futility;
+  }
   if (!j.contains("looks")) j["looks"] = nlohmann::json::array();
   j.erase("submitted_look");
   j.erase("slurm");
@@ -57,11 +65,14 @@ void start_decide(const fs::path& sweep_dir, const Grid& grid, const DecideSetti
 
 DecideSettings read_decide_settings(const fs::path& sweep_dir) {
   const nlohmann::json j = read_decide(sweep_dir);
-  if (!j.contains("block") || !j["block"].is_number_integer() || !j.contains("max_seeds") ||
-      !j["max_seeds"].is_number_integer() || !j.contains("initial_seeds") || !j["initial_seeds"].is_array())
+  if (!j.contains("block") || !j.contains("max_seeds") || !j.contains("initial_seeds") || !j["initial_seeds"].is_array())
     throw std::invalid_argument((sweep_dir / sweep_files::kDecide).string() +
                                 " is missing or has no block, max_seeds and initial_seeds: start with rapid sweep --decide");
-  return {.block = j["block"].get<int>(), .max_seeds = j["max_seeds"].get<int>()};
+  try {
+    return decide_settings_of(j);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument((sweep_dir / sweep_files::kDecide).string() + ": " + e.what());
+  }
 }
 
 DecideState advance_decide(const fs::path& sweep_dir, const DecideSettings& settings, const RunLookJobs& run,
@@ -71,7 +82,6 @@ DecideState advance_decide(const fs::path& sweep_dir, const DecideSettings& sett
   const int submitted_before = plan.value("submitted_look", -1);  // -1: none
   plan.erase("submitted_look");
   plan.erase("stopped");
-  plan["looks"] = nlohmann::json::array();
   auto stop = [&](DecideState state, const std::string& why) {
     plan["stopped"] = why;
     write_decide(sweep_dir, plan);
@@ -79,49 +89,47 @@ DecideState advance_decide(const fs::path& sweep_dir, const DecideSettings& sett
     return state;
   };
 
-  std::vector<std::uint64_t> seeds = initial;
-  SweepFolder folder = folder_with_seeds(sweep_dir, open_sweep_folder(sweep_dir).grid, seeds);
+  SweepFolder folder = folder_with_seeds(sweep_dir, open_sweep_folder(sweep_dir).grid, initial);
   if (!selected_jobs_done(folder, Selection{}))
     return stop(DecideState::kFailed, "the grid's own seeds are not all ok (rapid status " + sweep_dir.string() +
                                           "); the looks start when they are: run the same command again");
-  std::map<std::string, int> seeds_of;  // per cell key, the seeds it has been given
-  for (int look = 0;; ++look) {
+  int replayed_to = -1;  // the last look the records reached, so a replay that cannot pass it stops
+  for (;;) {
+    // The looks replayed on the records grid.json lists (report/decide_replay.hpp), up to the first
+    // block whose records are not all there.
     const Summary s = build_summary(sweep_dir);
     if (!s.decisions) return stop(DecideState::kFinished, "the grid's profile has no decision rule (decisions.json); nothing to decide");
-    nlohmann::json entry = {{"look", look}, {"verdicts", nlohmann::json::object()}};
-    for (const DecidedClaim& c : s.decisions->claims) entry["verdicts"][c.id] = c.verdict;
-    const NextLook next = next_look(*s.decisions, seeds_of, static_cast<int>(initial.size()), look, settings);
-    if (!next.stop.empty()) {
-      plan["looks"].push_back(entry);
-      return stop(DecideState::kFinished, "look " + std::to_string(look) + ": " + next.stop);
-    }
-    const std::set<std::string>& grow = next.grow;
-    // The next block: the seeds after every seed the grid has, for the growing cells only.
-    std::vector<std::uint64_t> block;
-    const std::uint64_t largest = *std::max_element(seeds.begin(), seeds.end());
-    for (int k = 1; k <= settings.block; ++k) block.push_back(largest + static_cast<std::uint64_t>(k));
-    seeds.insert(seeds.end(), block.begin(), block.end());
+    const LookReplay r = replay_folder_looks(s, initial, settings, s.decisions->settings);
+    plan["looks"] = r.looks;
+    if (!r.stop.empty()) return stop(DecideState::kFinished, r.stop);
+    const int look = r.look;
+    if (!r.decisions || look <= replayed_to)
+      return stop(DecideState::kFailed, "the records of look " + std::to_string(look + 1) +
+                                            " are listed as done but cannot be read (rapid status " + sweep_dir.string() + ")");
+    std::vector<std::uint64_t> seeds = initial;
+    for (const nlohmann::json& entry : r.looks)
+      for (const nlohmann::json& seed : entry.value("added_seeds", nlohmann::json::array())) seeds.push_back(seed.get<std::uint64_t>());
+    const std::vector<std::uint64_t> block = r.looks.back().at("added_seeds").get<std::vector<std::uint64_t>>();
     folder = folder_with_seeds(sweep_dir, folder.grid, seeds);
-    entry["added_seeds"] = block;
-    entry["cells"] = std::vector<std::string>(grow.begin(), grow.end());
-    plan["looks"].push_back(entry);
     write_decide(sweep_dir, plan);
-    for (const std::string& cell : grow) seeds_of.try_emplace(cell, static_cast<int>(initial.size())).first->second += settings.block;
 
     Selection selection;
-    selection.cells = grow;
+    selection.cells = r.grow;
     selection.seeds = std::set<std::uint64_t>(block.begin(), block.end());
     selection.text = "decide look " + std::to_string(look + 1);
-    if (selected_jobs_done(folder, selection)) continue;  // done by an earlier run: replayed
+    if (selected_jobs_done(folder, selection)) {  // done by an earlier run: replay on
+      replayed_to = look;
+      continue;
+    }
     const std::string what = "look " + std::to_string(look) + ": seeds " + std::to_string(block.front()) + "-" +
-                             std::to_string(block.back()) + " for " + std::to_string(grow.size()) + " cell" +
-                             (grow.size() == 1 ? "" : "s") + " of undecided comparisons";
+                             std::to_string(block.back()) + " for " + std::to_string(r.grow.size()) + " cell" +
+                             (r.grow.size() == 1 ? "" : "s") + " of undecided comparisons";
     if (submitted_before == look)
       return stop(DecideState::kFailed, what + " did not all end ok (rapid status " + sweep_dir.string() +
                                             "); run the same command again to resubmit them");
     log << "rapid sweep --decide: " << what << "\n";
     switch (run(folder, selection)) {
-      case LookJobs::kDone: break;
+      case LookJobs::kDone: replayed_to = look; break;
       case LookJobs::kSubmitted:
         plan["submitted_look"] = look;
         write_decide(sweep_dir, plan);

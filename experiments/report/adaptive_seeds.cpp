@@ -40,6 +40,23 @@ std::string look_cells_text(const nlohmann::json& look) {
   return text;
 }
 
+std::string look_frozen_text(const nlohmann::json& look) {
+  std::string text;
+  const nlohmann::json frozen = look.value("frozen", nlohmann::json::array());
+  for (const nlohmann::json& line : frozen)
+    text += (text.empty() ? "" : "; ") + (line.is_string() ? line.get<std::string>() : line.dump());
+  return text;
+}
+
+std::string rule_text(const nlohmann::json& a) {
+  const nlohmann::json rule = a.value("rule", nlohmann::json());
+  if (rule != "freeze")
+    return "Each look decides every comparison afresh (the rule before issue #42, with which this folder's looks began).";
+  return "A comparison is frozen at the look that decides it, at the look no undecided claim needs it any more, or "
+         "at the look its conditional power at the maximum falls below " +
+         fixed(a.value("futility", 0.0), 2) + " (futile); only the cells of comparisons still live get seeds.";
+}
+
 nlohmann::json adaptive_seeds_summary(const nlohmann::json& plan, const std::vector<CellSummary>& cells,
                                       const RunProvenance& provenance) {
   if (!plan.is_object() || !plan.contains("initial_seeds") || !plan["initial_seeds"].is_array() ||
@@ -58,6 +75,8 @@ nlohmann::json adaptive_seeds_summary(const nlohmann::json& plan, const std::vec
   for (const auto& [seeds, count] : seeds_per_cell) per_cell[std::to_string(seeds)] = count;
   const long n_cells = static_cast<long>(cells.size());
   return {{"initial_seeds", initial},
+          {"rule", plan.value("rule", nlohmann::json("redecide"))},
+          {"futility", plan.value("futility", nlohmann::json(nullptr))},
           {"block", plan["block"]},
           {"max_seeds", max_seeds},
           {"looks_max", plan["looks_max"]},
@@ -79,13 +98,18 @@ std::string adaptive_seeds_markdown(const nlohmann::json& a) {
       << " seeds for the cells of undecided comparisons only, up to " << a.value("max_seeds", 0L)
       << " per cell, at most " << a.value("looks_max", 0L)
       << " looks, each deciding at α / looks (decide.json; docs/decisions.md). A look's verdicts are those of the "
-         "seeds the cells had at it.\n\n| look | verdicts | then |\n|---|---|---|\n";
+         "seeds the cells had at it. "
+      << rule_text(a) << "\n\n| look | verdicts | then |\n|---|---|---|\n";
   for (const nlohmann::json& look : a.value("looks", nlohmann::json::array())) {
     const std::size_t grown = look.value("cells", nlohmann::json::array()).size();
     std::string then = "the looks stop";
     if (look.contains("added_seeds"))
       then = "seeds " + seed_range(look["added_seeds"]) + " to " + std::to_string(grown) + " cell" +
              (grown == 1 ? "" : "s") + ": <details><summary>which</summary>" + look_cells_text(look) + "</details>";
+    const std::size_t frozen = look.value("frozen", nlohmann::json::array()).size();
+    if (frozen > 0)
+      then += "; " + std::to_string(frozen) + " frozen: <details><summary>which</summary>" + look_frozen_text(look) +
+              "</details>";
     out << "| " << look.value("look", 0) << " | " << look_verdicts_text(look) << " | " << then << " |\n";
   }
   const nlohmann::json stopped = a.value("stopped", nlohmann::json());

@@ -27,6 +27,10 @@ std::string seed_range(const nlohmann::json& seeds);
 // ("merge/initial/rapid-rl, …"), as both reports list them.
 std::string look_verdicts_text(const nlohmann::json& look);
 std::string look_cells_text(const nlohmann::json& look);
+// What a look froze, one comparison and why each ("…: futile at look 0, 10 seeds: …"), "; " apart.
+std::string look_frozen_text(const nlohmann::json& look);
+// The rule the looks follow, one sentence, from "adaptive_seeds"'s rule and futility.
+std::string rule_text(const nlohmann::json& adaptive);
 
 // claims.md's "Adaptive seeds" section of a summary's "adaptive_seeds".
 std::string adaptive_seeds_markdown(const nlohmann::json& adaptive);

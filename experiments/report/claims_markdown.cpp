@@ -93,7 +93,8 @@ std::string comparisons_table(const Decisions& d, const std::vector<std::size_t>
     const Comparison& c = d.comparisons[i];
     out << "| " << c.where << " | " << c.metric << " | " << c.x << " vs " << c.y << (c.paired ? " (paired)" : "") << " | "
         << c.xs.size() << " / " << c.ys.size() << " | " << short_number(c.d.diff) << " | " << p_text(c.p_difference)
-        << " | " << p_text(c.p_equivalence) << " | " << outcome_text(c, c.outcome) << " | "
+        << " | " << p_text(c.p_equivalence) << " | " << outcome_text(c, c.outcome)
+        << (c.frozen.empty() ? "" : " (" + c.frozen + ")") << " | "
         << (claim_column ? outcome_text(c, c.wanted) + " | " : "")
         << (c.seeds_needed ? std::to_string(*c.seeds_needed) : "—") << " |\n";
   }

@@ -1,5 +1,6 @@
 #include "experiments/report/decide_simulation.hpp"
 
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 
@@ -32,11 +33,15 @@ bool decided_a_difference(const Decisions& d) {
   return false;
 }
 
-// Counts one experiment's verdicts, runs and whether it decided a difference into `out`.
-void tally(const Decisions& d, const std::map<std::string, int>& n_of, DesignOutcome& out) {
+// Counts one experiment's verdicts, runs, whether it decided a difference and whether `wrong`
+// found a wrong decision into `out`.
+void tally(const Decisions& d, const std::map<std::string, int>& n_of, const WrongDecision& wrong, DesignOutcome& out) {
   for (const DecidedClaim& c : d.claims) ++out.verdicts[c.id][c.verdict];
+  for (const Comparison& c : d.comparisons) ++out.outcomes_of[comparison_key(c)][outcome_name(c.outcome)];
   for (const auto& [cell, n] : n_of) out.runs += n;
-  out.any_difference += decided_a_difference(d);
+  const bool difference = decided_a_difference(d);
+  out.any_difference += difference;
+  out.any_wrong += wrong ? std::any_of(d.comparisons.begin(), d.comparisons.end(), wrong) : difference;
 }
 
 std::map<std::string, std::string> verdicts_of(const Decisions& d) {
@@ -56,7 +61,7 @@ SeedResult resample_seed(const CellSummary& cell, Rng& rng) {
 }
 
 DecideSimulation simulate_decide(const Summary& observed, int initial_seeds, const DecideSettings& plan, int experiments,
-                                 std::uint64_t seed, const SeedDraw& draw) {
+                                 std::uint64_t seed, const SeedDraw& draw, const WrongDecision& wrong) {
   if (!observed.decisions) throw std::invalid_argument("the sweep's profile has no decision rule (decisions.json)");
   DecideSimulation sim;
   sim.experiments = experiments;
@@ -68,8 +73,10 @@ DecideSimulation simulate_decide(const Summary& observed, int initial_seeds, con
   const int longest = initial_seeds + (looks_max - 1) * plan.block;
   sim.fixed_initial.name = "fixed, " + std::to_string(initial_seeds) + " seeds";
   sim.fixed_max.name = "fixed, " + std::to_string(plan.max_seeds) + " seeds";
-  sim.adaptive.name = "--decide (" + std::to_string(initial_seeds) + " seeds, blocks of " + std::to_string(plan.block) +
-                      " up to " + std::to_string(plan.max_seeds) + ")";
+  const std::string looks_text = std::to_string(initial_seeds) + " seeds, blocks of " + std::to_string(plan.block) +
+                                 " up to " + std::to_string(plan.max_seeds);
+  sim.adaptive.name = "--decide (" + looks_text + "; freeze, futility below " + fixed(plan.futility, 2) + ")";
+  sim.redecide.name = "--decide (" + looks_text + "; redecide, the rule before #42)";
   DecisionSettings single = observed.decisions->settings, sequential = single;
   single.looks = 1;
   sequential.looks = looks_max;
@@ -94,26 +101,37 @@ DecideSimulation simulate_decide(const Summary& observed, int initial_seeds, con
       return n_of;
     };
     const auto at_initial = all_at(initial_seeds), at_max = all_at(plan.max_seeds);
-    tally(decide_claims(with_seeds(observed, draws, at_initial), single), at_initial, sim.fixed_initial);
+    tally(decide_claims(with_seeds(observed, draws, at_initial), single), at_initial, wrong, sim.fixed_initial);
     const Decisions fixed_max = decide_claims(with_seeds(observed, draws, at_max), single);
-    tally(fixed_max, at_max, sim.fixed_max);
+    tally(fixed_max, at_max, wrong, sim.fixed_max);
 
-    std::map<std::string, int> n_of = at_initial;
-    for (int look = 0;; ++look) {
-      const Decisions d = decide_claims(with_seeds(observed, draws, n_of), sequential);
-      const NextLook next = next_look(d, n_of, initial_seeds, look, plan);
-      if (next.stop.empty()) {
-        for (const std::string& cell : next.grow) n_of[cell] += plan.block;
-        continue;
-      }
-      tally(d, n_of, sim.adaptive);
-      sim.looks += look + 1;
-      sim.same_as_fixed_max += verdicts_of(d) == verdicts_of(fixed_max);
-      break;
+    for (DesignOutcome* design : {&sim.adaptive, &sim.redecide}) {
+      DecideSettings rule = plan;
+      rule.rule = design == &sim.adaptive ? plan.rule : LookRule::kRedecide;
+      const DecideAtLook at = [&](int, const std::map<std::string, int>& seeds_of,
+                                  const FrozenComparisons& frozen) -> std::optional<Decisions> {
+        std::map<std::string, int> n_of = at_initial;
+        for (const auto& [cell, n] : seeds_of) n_of[cell] = n;
+        return decide_claims(with_seeds(observed, draws, n_of), sequential, frozen);
+      };
+      const LookReplay r = replay_looks(at, initial_seeds, 0, rule);
+      std::map<std::string, int> n_of = at_initial;
+      for (const auto& [cell, n] : r.state.seeds_of) n_of[cell] = n;
+      tally(*r.decisions, n_of, wrong, *design);
+      design->looks += r.look + 1;
+      design->same_as_fixed_max += verdicts_of(*r.decisions) == verdicts_of(fixed_max);
+      for (const auto& [key, c] : r.state.frozen)
+        if (c.frozen.rfind("futile", 0) == 0) {
+          ++design->futile;
+          ++design->futile_of[key];
+        }
     }
   }
-  for (DesignOutcome* o : {&sim.fixed_initial, &sim.fixed_max, &sim.adaptive}) o->runs /= experiments;
-  sim.looks /= experiments;
+  for (DesignOutcome* o : {&sim.fixed_initial, &sim.fixed_max, &sim.adaptive, &sim.redecide}) {
+    o->runs /= experiments;
+    o->looks /= experiments;
+    o->futile /= experiments;
+  }
   return sim;
 }
 
@@ -123,9 +141,11 @@ std::string decide_simulation_markdown(const DecideSimulation& sim, const std::s
   md << "# Adaptive seeds against fixed designs: " << sweep_name << "\n\n"
      << "Simulated from this sweep's own per-seed results (`rapid simulate-decide`, docs/decisions.md §Simulation): "
      << sim.experiments << " experiments (seed " << sim.seed << "), each giving every one of the " << sim.cells
-     << " cells seeds drawn with replacement from its ok seeds, decided three ways. The fixed designs decide once at "
-        "α; --decide decides at α/K over its looks, as `rapid sweep --decide` does.\n\n";
-  const DesignOutcome* designs[] = {&sim.fixed_initial, &sim.fixed_max, &sim.adaptive};
+     << " cells seeds drawn with replacement from its ok seeds, decided four ways. The fixed designs decide once at "
+        "α; --decide decides at α/K over its looks, as `rapid sweep --decide` does, under its rule (a comparison is "
+        "frozen once decided, once no undecided claim needs it, or once it is futile) and under the rule before issue "
+        "#42 (every look decides every comparison afresh and grows the cells of all undecided ones).\n\n";
+  const DesignOutcome* designs[] = {&sim.fixed_initial, &sim.fixed_max, &sim.adaptive, &sim.redecide};
   md << "| design | runs (mean) | share of the largest fixed design |";
   std::vector<std::string> claims;
   for (const auto& [claim, verdicts] : sim.fixed_max.verdicts) {
@@ -148,10 +168,14 @@ std::string decide_simulation_markdown(const DecideSimulation& sim, const std::s
     }
     md << "\n";
   }
-  md << "\n--decide took " << fixed(sim.looks, 2) << " looks on average and gave every claim the verdict of the "
-     << "fixed " << sim.plan.max_seeds << "-seed design in " << fixed(100.0 * sim.same_as_fixed_max / n, 1)
-     << " % of the experiments, at " << fixed(100.0 * sim.adaptive.runs / sim.fixed_max.runs, 0)
-     << " % of its runs.\n\nThe resampled seeds are this sweep's: where its cells truly differ by little, every design "
+  md << "\n";
+  for (const DesignOutcome* d : {&sim.adaptive, &sim.redecide})
+    md << d->name << ": " << fixed(d->looks, 2) << " looks on average, every claim with the verdict of the fixed "
+       << sim.plan.max_seeds << "-seed design in " << fixed(100.0 * d->same_as_fixed_max / n, 1)
+       << " % of the experiments, at " << fixed(100.0 * d->runs / sim.fixed_max.runs, 0) << " % of its runs"
+       << (d == &sim.adaptive ? "; " + fixed(d->futile, 1) + " comparisons frozen as futile per experiment" : std::string())
+       << ".\n\n";
+  md << "The resampled seeds are this sweep's: where its cells truly differ by little, every design "
         "sees the same small differences; the simulation measures the designs' cost and agreement, not the claims' truth.\n";
   return md.str();
 }

@@ -71,9 +71,13 @@ std::pair<std::vector<double>, std::vector<double>> seed_bc_means(const CellSumm
 
 class Builder {
  public:
-  Builder(const Summary& s, const DecisionSettings& settings) : s_(s), settings_(settings) {}
+  Builder(const Summary& s, const DecisionSettings& settings, const FrozenComparisons& frozen)
+      : s_(s), settings_(settings), frozen_(frozen) {}
 
   std::size_t add(Comparison c) {
+    c.key.clear();
+    const int seen = ++keys_seen_[comparison_key(c)];
+    c.key = comparison_key(c) + (seen > 1 ? " #" + std::to_string(seen) : "");
     out_.comparisons.push_back(std::move(c));
     return out_.comparisons.size() - 1;
   }
@@ -218,18 +222,27 @@ class Builder {
 
   // Every hypothesis into one Holm family; then each comparison's outcome and, if undecided, the
   // seeds that would resolve it.
+  // A comparison frozen at an earlier look (docs/decisions.md §Adaptive seeds) keeps its outcome and
+  // statistics from then and stays in the family with p = 0 for the hypothesis it rejected and 1
+  // for the others, so the family's size does not change from look to look.
   void run_tests() {
     std::vector<double> p;
     std::vector<std::pair<std::size_t, bool>> owner;  // (comparison, is the equivalence test)
     for (std::size_t i = 0; i < out_.comparisons.size(); ++i) {
       Comparison& c = out_.comparisons[i];
-      c.d = c.paired && c.xs.size() == c.ys.size() ? paired_difference(c.xs, c.ys) : welch_difference(c.xs, c.ys);
-      c.p_difference = p_difference(c.d);
-      c.p_equivalence = c.delta ? p_equivalence(c.d, *c.delta) : kNaN;
-      p.push_back(c.p_difference);
+      const auto was = frozen_.find(comparison_key(c));
+      if (was != frozen_.end()) {
+        c = was->second;
+        p.push_back(c.outcome == ComparisonOutcome::kXBetter || c.outcome == ComparisonOutcome::kYBetter ? 0.0 : 1.0);
+      } else {
+        c.d = c.paired && c.xs.size() == c.ys.size() ? paired_difference(c.xs, c.ys) : welch_difference(c.xs, c.ys);
+        c.p_difference = p_difference(c.d);
+        c.p_equivalence = c.delta ? p_equivalence(c.d, *c.delta) : kNaN;
+        p.push_back(c.p_difference);
+      }
       owner.emplace_back(i, false);
       if (c.delta) {
-        p.push_back(c.p_equivalence);
+        p.push_back(was == frozen_.end() ? c.p_equivalence : c.outcome == ComparisonOutcome::kEquivalent ? 0.0 : 1.0);
         owner.emplace_back(i, true);
       }
     }
@@ -238,13 +251,14 @@ class Builder {
     for (std::size_t k = 0; k < p.size(); ++k) {
       if (!rejected[k]) continue;
       Comparison& c = out_.comparisons[owner[k].first];
+      if (!c.frozen.empty()) continue;
       // A difference shown to lie within ±δ is no win (docs/decisions.md): when both tests reject,
       // the comparison is equivalent. A comparison's equivalence test follows its difference test.
       if (owner[k].second) c.outcome = ComparisonOutcome::kEquivalent;
       else c.outcome = c.d.diff > 0 ? ComparisonOutcome::kXBetter : ComparisonOutcome::kYBetter;
     }
     for (Comparison& c : out_.comparisons) {
-      if (c.outcome != ComparisonOutcome::kUndecided || std::isnan(c.d.se)) continue;
+      if (c.outcome != ComparisonOutcome::kUndecided || std::isnan(c.d.se) || !c.frozen.empty()) continue;
       const double effect = c.delta ? *c.delta : std::abs(c.d.diff);
       if (!(effect > 0.0)) continue;
       // The spread behind the standard error, per side (paired: of the differences, over √2).
@@ -288,6 +302,8 @@ class Builder {
 
   const Summary& s_;
   const DecisionSettings& settings_;
+  const FrozenComparisons& frozen_;
+  std::map<std::string, int> keys_seen_;
   Decisions out_;
 };
 
@@ -331,8 +347,8 @@ std::optional<DecisionSettings> load_decision_settings(const std::string& profil
   return s;
 }
 
-Decisions decide_claims(const Summary& s, const DecisionSettings& settings) {
-  Builder b(s, settings);
+Decisions decide_claims(const Summary& s, const DecisionSettings& settings, const FrozenComparisons& frozen) {
+  Builder b(s, settings, frozen);
   std::vector<ClaimSpec> specs;
   if (!s.grid.axes.empty()) {
     for (const char* id : {"C1", "C2", "C3", "C4", "C5", "C6"})
@@ -358,7 +374,8 @@ std::vector<std::string> published_baselines(const Summary& s) {
 std::optional<Decisions> decide_published_baselines(const Summary& s, const DecisionSettings& settings) {
   const std::vector<std::string> baselines = published_baselines(s);
   if (baselines.empty() || !has(s.grid.algos, kRapidRl) || !s.grid.axes.empty()) return std::nullopt;
-  Builder b(s, settings);
+  const FrozenComparisons none;
+  Builder b(s, settings, none);
   b.published_baselines(baselines);
   return b.finish({});
 }

@@ -18,8 +18,9 @@ namespace rapid {
 std::optional<DecisionSettings> load_decision_settings(const std::string& profile);
 
 // Decides the claims of `s` (its cells' per-seed finals, curves and BC losses). Claims whose data
-// the grid lacks are N/A, as in check_claims.
-Decisions decide_claims(const Summary& s, const DecisionSettings& settings);
+// the grid lacks are N/A, as in check_claims. Comparisons in `frozen` (adaptive seeds' earlier
+// looks, report/decide_looks.hpp) keep their outcome from then, in the family with p 0 or 1.
+Decisions decide_claims(const Summary& s, const DecisionSettings& settings, const FrozenComparisons& frozen = {});
 
 // The grid's baselines that the paper does not run (registry: not in the paper, not a variant of
 // RAPID-RL; rlpd-sac and td3-bc), in the grid's order.

@@ -43,7 +43,7 @@ std::string comparisons_table(const nlohmann::json& d) {
             html_escape(c.value("y", "")) + "</td><td>" + short_number(number(c.value("difference", nlohmann::json()))) +
             "</td><td>" + p_text(c.value("p_difference", nlohmann::json())) + "</td><td>" +
             p_text(c.value("p_equivalence", nlohmann::json())) + "</td><td>" + html_escape(c.value("outcome", "")) +
-            "</td>" + (wanted ? "<td>" + html_escape(c.value("wanted", "")) + "</td>" : "") + "<td>" +
+            (c.contains("frozen") ? " (" + html_value(c["frozen"]) + ")" : "") + "</td>" + (wanted ? "<td>" + html_escape(c.value("wanted", "")) + "</td>" : "") + "<td>" +
             (needed.is_number() ? html_value(needed) : "—") + "</td></tr>\n";
   }
   return html + "</tbody></table>";
@@ -89,12 +89,14 @@ std::string adaptive(const nlohmann::json& summary) {
   std::string html = "<h3>Adaptive seeds</h3>\n<p>The grid's " + std::to_string(a.value("initial_seeds", 0)) +
                      " seeds, then blocks of " + std::to_string(a.value("block", 0)) +
                      " seeds for the cells of undecided comparisons only, up to " +
-                     std::to_string(a.value("max_seeds", 0)) + " per cell (<code>rapid sweep --decide</code>).</p>\n"
+                     std::to_string(a.value("max_seeds", 0)) + " per cell (<code>rapid sweep --decide</code>). " +
+                     html_escape(rule_text(a)) + "</p>\n"
                      "<table class=\"numbers\" id=\"adaptive-looks\"><thead><tr><th>Look</th><th>Verdicts</th>"
-                     "<th>Seeds added</th><th>Cells</th></tr></thead><tbody>\n";
+                     "<th>Seeds added</th><th>Cells</th><th>Frozen</th></tr></thead><tbody>\n";
   for (const nlohmann::json& look : a.value("looks", nlohmann::json::array())) {
     const nlohmann::json added = look.value("added_seeds", nlohmann::json::array());
     const std::size_t cells = look.value("cells", nlohmann::json::array()).size();
+    const std::size_t frozen = look.value("frozen", nlohmann::json::array()).size();
     html += "<tr><td>" + std::to_string(look.value("look", 0)) + "</td><td>" + html_escape(look_verdicts_text(look)) +
             "</td><td>" + (added.empty() ? std::string("—") : html_escape(seed_range(added))) +
             "</td><td>" +
@@ -102,6 +104,10 @@ std::string adaptive(const nlohmann::json& summary) {
                         : "<details><summary>" + std::to_string(cells) + "</summary>" +
                               html_escape(look_cells_text(look)) +
                                  "</details>") +
+            "</td><td>" +
+            (frozen == 0 ? std::string("—")
+                         : "<details><summary>" + std::to_string(frozen) + "</summary>" +
+                               html_escape(look_frozen_text(look)) + "</details>") +
             "</td></tr>\n";
   }
   const nlohmann::json fixed = a.value("fixed_design_runs", nlohmann::json::object());

@@ -12,6 +12,7 @@
 #include "experiments/report/adaptive_seeds.hpp"
 #include "experiments/report/cell_records.hpp"
 #include "experiments/report/claims.hpp"
+#include "experiments/report/decide_replay.hpp"
 #include "experiments/report/decisions.hpp"
 #include "experiments/report/curves.hpp"
 #include "experiments/report/dataset_summary.hpp"
@@ -274,6 +275,8 @@ std::optional<nlohmann::json> read_decide_plan(const fs::path& path) {
 
 }  // namespace
 
+void build_table_rows(Summary& s) { build_rows(s); }
+
 Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptions& options) {
   const SweepFolder folder = open_sweep_folder(sweep_dir);
   Summary s;
@@ -336,7 +339,8 @@ Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptio
     if (auto settings = load_decision_settings(s.grid.profile)) {
       // A folder that `rapid sweep --decide` has looked at decides at α / (its largest number of looks),
       // and its reports say what the looks spent.
-      if (const std::optional<nlohmann::json> plan = read_decide_plan(folder.path(sweep_files::kDecide))) {
+      const std::optional<nlohmann::json> plan = read_decide_plan(folder.path(sweep_files::kDecide));
+      if (plan) {
         settings->looks = static_cast<int>(*json_integer((*plan)["looks_max"]));
         try {
           s.adaptive_seeds = adaptive_seeds_summary(*plan, s.cells, s.provenance);
@@ -344,8 +348,30 @@ Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptio
           throw std::invalid_argument(folder.path(sweep_files::kDecide).string() + ": a field has the wrong type: " + e.what());
         }
       }
-      s.decisions = decide_claims(s, *settings);
-      s.baseline_decisions = decide_published_baselines(s, *settings);
+      // Under the freeze rule a comparison keeps the outcome of the look that froze it, so the
+      // verdicts are the replayed looks' last; until look 0's records are all there, the records'.
+      // The published baselines' family then decides on the grid's own seeds at α: the looks grew
+      // RAPID-RL's cells by its own values, the grid's seeds were fixed (docs/decisions.md).
+      std::optional<Decisions> replayed;
+      std::optional<Summary> grid_seeds;
+      if (plan && plan->value("rule", "") == "freeze") {
+        try {
+          const DecideSettings looks = decide_settings_of(*plan);
+          const auto initial = (*plan).at("initial_seeds").get<std::vector<std::uint64_t>>();
+          replayed = replay_folder_looks(s, initial, looks, *settings).decisions;
+          grid_seeds = cells_at(s, initial, {});
+        } catch (const std::exception& e) {
+          throw std::invalid_argument(folder.path(sweep_files::kDecide).string() + ": " + e.what());
+        }
+      }
+      s.decisions = replayed ? *replayed : decide_claims(s, *settings);
+      if (grid_seeds) {
+        DecisionSettings once = *settings;
+        once.looks = 1;
+        s.baseline_decisions = decide_published_baselines(*grid_seeds, once);
+      } else {
+        s.baseline_decisions = decide_published_baselines(s, *settings);
+      }
     }
   }
   return s;

@@ -18,4 +18,8 @@ struct SummaryOptions {
 // if DIR is not a sweep folder; a missing or broken record is a status, not an error.
 Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptions& options = {});
 
+// Table I's rows of `s` from its grid and cells (what build_summary does after reading the cells),
+// for a Summary made from elsewhere (a committed reports folder, report/decide_replay.hpp).
+void build_table_rows(Summary& s);
+
 }  // namespace rapid

@@ -12,6 +12,10 @@ std::string CellSummary::key() const {
   return scenario + "/" + (dataset.empty() ? "none" : dataset) + "/" + algo + (axis.empty() ? "" : "/" + point_label(axis));
 }
 
+std::string comparison_key(const Comparison& c) {
+  return c.key.empty() ? c.where + " | " + c.metric + " | " + c.x + " vs " + c.y : c.key;
+}
+
 const CellSummary* Summary::find(const std::string& scenario, const std::string& dataset, const std::string& algo) const {
   for (const CellSummary& c : cells)
     if (c.scenario == scenario && c.dataset == dataset && c.algo == algo && c.axis.empty()) return &c;

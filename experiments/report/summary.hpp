@@ -182,7 +182,17 @@ struct Comparison {
   double p_difference = 0.0, p_equivalence = 0.0;  // NaN where not computed
   ComparisonOutcome outcome = ComparisonOutcome::kUndecided;
   std::optional<int> seeds_needed;  // undecided ones: per side, to resolve δ (or the observed gap)
+  // Adaptive seeds (report/decide_looks.hpp): when and why it was frozen ("decided at look 1, 15
+  // seeds"; "futile at look 0, 10 seeds: …"); empty: decided on the seeds its cells have now.
+  std::string frozen;
+  std::string key;  // comparison_key, set when the family is built
 };
+
+// A comparison's identity across looks: where, metric, x and y, and "#2" on the second of two
+// such (C1 and C2 both compare RAPID-RL with DDPG on final return, for different claims).
+std::string comparison_key(const Comparison& c);
+// Comparisons decided once (at a look of adaptive seeds), as they were then, by comparison_key.
+using FrozenComparisons = std::map<std::string, Comparison>;
 
 struct DecidedClaim {
   std::string id;

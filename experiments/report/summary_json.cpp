@@ -78,6 +78,7 @@ nlohmann::json decisions_json(const Decisions& d) {
                         {"seeds_needed", c.seeds_needed ? nlohmann::json(*c.seeds_needed) : nlohmann::json(nullptr)}};
     // What a claim needs of the comparison; a family without claims (the published baselines') has none.
     if (!d.claims.empty()) j["wanted"] = outcome_name(c.wanted);
+    if (!c.frozen.empty()) j["frozen"] = c.frozen;
     comparisons.push_back(std::move(j));
   }
   nlohmann::json claims = nlohmann::json::array();

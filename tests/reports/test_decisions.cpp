@@ -20,49 +20,11 @@
 #include "experiments/report/summarize.hpp"
 #include "experiments/report/write_reports.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
+#include "tests/reports/decisions_fixture.hpp"
 #include "tests/reports/report_test_util.hpp"
 
 namespace rapid {
 namespace {
-
-using report_test::FakeRun;
-
-const std::vector<std::string> kAlgos = {"rapid-rl", "rlpd", "col-prior", "col-all", "ddpg"};
-const std::vector<std::string> kDatasets = {"initial", "final+medium"};
-
-// A merge sweep (short profile: δ = 11.8) of `seeds` seeds whose final returns are
-// mean(dataset, algo) + the seed's offset, offsets spread symmetrically with the given std.
-class DecisionsTest : public ::testing::Test {
- protected:
-  testing::ScratchDir scratch;
-  std::filesystem::path sweep = scratch.path() / "sweep";
-
-  Summary make(const std::function<double(const std::string& dataset, const std::string& algo)>& mean, int seeds,
-               double spread, const std::vector<std::string>& algos = kAlgos) {
-    std::vector<int> seed_list;
-    for (int i = 0; i < seeds; ++i) seed_list.push_back(i);
-    report_test::write_grid(sweep, report_test::make_grid("decide", {"merge"}, kDatasets, algos, seed_list));
-    for (const std::string& algo : algos)
-      for (const std::string& dataset : kDatasets) {
-        if (algo == "ddpg" && dataset != kDatasets.front()) continue;
-        for (int i = 0; i < seeds; ++i) {
-          FakeRun r = report_test::pendulum_run(algo == "ddpg" ? "" : dataset, algo, static_cast<std::uint64_t>(i), 0.0);
-          r.scenario = "merge";
-          // Offsets −1, +1, −1, … scaled to the spread (population std exactly `spread` for even n).
-          r.final_return = mean(algo == "ddpg" ? "" : dataset, algo) + (i % 2 == 0 ? -spread : spread);
-          r.eval = {{0, 0.0}, {500, r.final_return / 2}, {1000, r.final_return}};
-          report_test::write_run(sweep, r);
-        }
-      }
-    return build_summary(sweep);
-  }
-
-  static const DecidedClaim& claim(const Summary& s, const std::string& id) {
-    for (const DecidedClaim& c : s.decisions->claims)
-      if (c.id == id) return c;
-    throw std::runtime_error("no claim " + id);
-  }
-};
 
 TEST_F(DecisionsTest, ClearDifferencesConfirmAndRefute) {
   // RAPID-RL 40 above everything (> 3δ), CoL-all 40 below DDPG, CoL-prior better with better data.
@@ -260,63 +222,6 @@ TEST_F(DecisionsTest, TheProcedureDecidesAWrongDifferenceInAtMostAlphaOfSimulate
   }
   EXPECT_EQ(wrong_way, 0);
   EXPECT_GE(detected / (500.0 * 2), 0.8);  // two rows, power 0.8 as stated
-}
-
-// The whole adaptive procedure, --decide's looks included (report/decide_looks.hpp, the rule
-// `rapid sweep --decide` runs), on simulated seeds: 10 seeds, blocks of 5 up to 30, α/K per look.
-TEST_F(DecisionsTest, AdaptiveSeedsDecideAWrongDifferenceInAtMostAlphaAndATrueOneAtThePower) {
-  const Summary s = make([](const std::string&, const std::string&) { return 500.0; }, 10, 1.0);
-  const double delta = load_decision_settings("short")->delta.at("merge");
-  const auto seed_with = [](double final_return) {
-    SeedResult r;
-    r.final_return = final_return;
-    r.eval = {{0, 0.0}, {500, final_return / 2}, {1000, final_return}};
-    return r;
-  };
-  const DecideSettings plan{.block = 5, .max_seeds = 30};
-  constexpr int kExperiments = 2000;
-  const DecideSimulation null = simulate_decide(s, 10, plan, kExperiments, 7, [&](const CellSummary&, Rng& rng) {
-    return seed_with(rng.normal(500.0, 100.0));
-  });
-  const double bound = 0.05 + 3 * std::sqrt(0.05 * 0.95 / kExperiments);
-  EXPECT_LE(null.adaptive.any_difference / double(kExperiments), bound);
-  EXPECT_LE(null.fixed_max.any_difference / double(kExperiments), bound);
-  EXPECT_GT(null.looks, 1.0);  // the looks did add seeds
-  EXPECT_GT(null.adaptive.runs, null.fixed_initial.runs);
-
-  // Comparisons that the maximum cannot decide grow to it, look by look: every cell's k-th seed
-  // has the same return in every cell (no difference to find) and the seeds spread far beyond δ
-  // (no equivalence either), so --decide takes all 5 looks (10, 15, …, 30 seeds) and every cell
-  // runs 30. Fewer runs would mean a look stopped an undecided comparison; more, a cell past the
-  // maximum.
-  std::map<std::string, int> drawn;
-  const DecideSimulation hopeless = simulate_decide(s, 10, plan, 20, 9, [&](const CellSummary& c, Rng&) {
-    const int k = drawn[c.key()]++;
-    return seed_with(500.0 + 1e6 * std::sin(k));
-  });
-  EXPECT_EQ(hopeless.adaptive.any_difference, 0);
-  EXPECT_DOUBLE_EQ(hopeless.looks, 5.0);
-  EXPECT_DOUBLE_EQ(hopeless.adaptive.runs, 30.0 * hopeless.cells);
-  EXPECT_DOUBLE_EQ(hopeless.fixed_max.runs, 30.0 * hopeless.cells);
-
-  // RAPID-RL truly 2δ above every other algorithm, seed std δ: 10 seeds do not always tell, the looks do.
-  const DecideSimulation better = simulate_decide(s, 10, plan, 500, 8, [&](const CellSummary& c, Rng& rng) {
-    return seed_with(rng.normal(c.algo == "rapid-rl" ? 500.0 + 2 * delta : 500.0, delta));
-  });
-  const auto share = [&](const DesignOutcome& d, const std::string& claim, const std::string& verdict) {
-    const auto v = d.verdicts.at(claim);
-    return (v.count(verdict) ? v.at(verdict) : 0) / 500.0;
-  };
-  EXPECT_GE(share(better.adaptive, "C1", "CONFIRMED"), 0.8);   // highest mean in most rows
-  EXPECT_EQ(share(better.adaptive, "C1", "REFUTED"), 0.0);
-  EXPECT_LT(share(better.fixed_initial, "C1", "CONFIRMED"), share(better.adaptive, "C1", "CONFIRMED"));
-  EXPECT_LT(better.adaptive.runs, better.fixed_max.runs);
-  std::cout << "no difference: a difference declared in " << null.adaptive.any_difference << "/" << kExperiments
-            << " (--decide, " << null.looks << " looks, " << null.adaptive.runs << " runs), "
-            << null.fixed_max.any_difference << " (30 seeds); 2δ: C1 confirmed in "
-            << share(better.adaptive, "C1", "CONFIRMED") << " (--decide, " << better.adaptive.runs << " runs), "
-            << share(better.fixed_initial, "C1", "CONFIRMED") << " (10 seeds), " << share(better.fixed_max, "C1", "CONFIRMED")
-            << " (30 seeds, " << better.fixed_max.runs << " runs)\n";
 }
 
 }  // namespace

@@ -21,7 +21,7 @@ TEST(Decide, AddsBlocksOfSeedsToUndecidedCellsAndResumesWithoutRerunning) {
   nlohmann::json g = pendulum_grid("g", {"rapid-rl", "ddpg"}, {0, 1}, 400);
   g["profile"] = "short";
   write_json(grid, g);
-  const std::string cmd = "sweep " + grid.string() + " --jobs 2 --no-animations --decide --max-seeds 4 --block 1 --out " +
+  const std::string cmd = "sweep " + grid.string() + " --jobs 2 --no-animations --decide --max-seeds 4 --block 1 --futility 0 --out " +
                           sweep.string();
   const Result r = run_rapid(cmd);
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -66,14 +66,28 @@ TEST(Decide, AddsBlocksOfSeedsToUndecidedCellsAndResumesWithoutRerunning) {
   EXPECT_EQ(again.output.find("the grid differs"), std::string::npos) << again.output;
   EXPECT_EQ(read_json(sweep / "grid.json")["seeds"], nlohmann::json({0, 1, 2, 3}));
 
-  // The same sweep's seeds resampled: the three designs, from the grid's own two seeds.
-  const Result sim = run_rapid("simulate-decide " + sweep.string() + " --experiments 20 --max-seeds 4 --block 1");
+  // The same sweep's seeds resampled: the four designs, from the grid's own two seeds.
+  const Result sim =
+      run_rapid("simulate-decide " + sweep.string() + " --experiments 20 --max-seeds 4 --block 1 --futility 0");
   ASSERT_EQ(sim.exit_code, 0) << sim.output;
   std::ifstream in(sweep / "decide-simulation.md");
   const std::string md((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(md.find("| fixed, 2 seeds | 4.0 | 50 % |"), std::string::npos) << md;  // 2 cells × 2 seeds
   EXPECT_NE(md.find("| fixed, 4 seeds | 8.0 | 100 % |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| --decide (2 seeds, blocks of 1 up to 4) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| --decide (2 seeds, blocks of 1 up to 4; freeze, futility below 0.00) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| --decide (2 seeds, blocks of 1 up to 4; redecide, the rule before #42) |"), std::string::npos) << md;
+
+  // The folder's looks replayed from its records under its own rule spend what the run spent.
+  const Result replay = run_rapid("replay-decide " + sweep.string() + " --futility 0");
+  ASSERT_EQ(replay.exit_code, 0) << replay.output;
+  EXPECT_NE(replay.output.find("| freeze | " + std::to_string(plan["looks"].size()) + " | " + std::to_string(runs) + " |"),
+            std::string::npos)
+      << replay.output;
+  EXPECT_NE(replay.output.find("| redecide | "), std::string::npos) << replay.output;
+  EXPECT_TRUE(fs::exists(sweep / "decide-replay.md"));
+  const Result no_plan = run_rapid("replay-decide " + dir.path().string());
+  EXPECT_EQ(no_plan.exit_code, 2);
+  EXPECT_NE(no_plan.output.find("FOLDER: "), std::string::npos) << no_plan.output;
   const Result below = run_rapid("simulate-decide " + sweep.string() + " --max-seeds 1");
   EXPECT_EQ(below.exit_code, 2) << below.output;
   // A negative seed once became 2^64 − 1 (issue 46).
@@ -104,7 +118,7 @@ TEST(Decide, ALookWhoseSubmittedJobsFailedStopsTheLooksUntilTheUserStartsThemAga
   write_json(grid_file, g);
   const Result r = run_rapid("sweep " + grid_file.string() + " --jobs 2 --no-summary --out " + sweep.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const DecideSettings settings{.block = 2, .max_seeds = 6};
+  const DecideSettings settings{.block = 2, .max_seeds = 6, .futility = 0.0};
   const Grid grid = load_grid(grid_file.string());
   start_decide(sweep, grid, settings);
 

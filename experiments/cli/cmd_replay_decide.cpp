@@ -1,0 +1,107 @@
+// `rapid replay-decide FOLDER`: a --decide folder's looks replayed on its own per-seed results under
+// both rules of docs/decisions.md §Adaptive seeds, freeze (with futility) and redecide (the rule
+// before issue #42), at no new compute: what each would have spent and decided, beside what the
+// folder's own run did. Reads a sweep folder's records, or a committed reports folder's
+// summary.json and runs.csv (results/*, whose records are not in git). Writes FOLDER/decide-replay.md.
+#include <iostream>
+
+#include "core/atomic_file.hpp"
+#include "core/json_input.hpp"
+#include "experiments/cli/commands.hpp"
+#include "experiments/cli/errors.hpp"
+#include "experiments/report/decide_replay.hpp"
+#include "experiments/report/decisions.hpp"
+#include "experiments/report/report_folder.hpp"
+#include "experiments/report/summarize.hpp"
+#include "experiments/sweep/state.hpp"
+
+namespace rapid {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ReplayOptions {
+  std::string folder;
+  double futility = 0.10;
+};
+
+int replay_decide_command(const ReplayOptions& o) {
+  const fs::path dir = o.folder;
+  const fs::path plan_path = dir / sweep_files::kDecide;
+  nlohmann::json plan;
+  try {
+    plan = read_json_input(plan_path.string());
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("FOLDER: " + std::string(e.what()) + " (a folder rapid sweep --decide has looked at)");
+  }
+  DecideSettings settings;
+  std::vector<std::uint64_t> initial;
+  try {
+    settings = decide_settings_of(plan);
+    initial = plan.at("initial_seeds").get<std::vector<std::uint64_t>>();
+  } catch (const std::exception& e) {
+    throw UsageError(plan_path.string() + ": " + e.what());
+  }
+  if (initial.empty()) throw UsageError(plan_path.string() + ": initial_seeds is empty");
+
+  DecideReplayReport report;
+  Summary full;
+  double run_s = 0.0, runs = 0.0;
+  std::error_code ec;
+  report.from_records = fs::is_directory(dir / "jobs", ec);
+  try {
+    if (report.from_records) {
+      SummaryOptions options;
+      options.dataset_stats = false;
+      full = build_summary(dir, options);
+      run_s = full.provenance.run_wall_s;
+      runs = full.provenance.runs;
+    } else {
+      const ReportFolder reports = read_report_folder(dir, dir);
+      full = summary_of_reports(reports);
+      const nlohmann::json provenance = reports.summary.value("provenance", nlohmann::json::object());
+      run_s = provenance.value("run_wall_s", 0.0);
+      runs = provenance.value("runs", 0.0);
+    }
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("FOLDER: " + std::string(e.what()));
+  }
+  const std::optional<DecisionSettings> decision = load_decision_settings(full.grid.profile);
+  if (!decision) throw UsageError("FOLDER: the grid's profile '" + full.grid.profile + "' has no decision rule (decisions.json)");
+
+  report.name = full.grid.name;
+  report.initial_seeds = static_cast<int>(initial.size());
+  for (const CellSummary& c : full.cells) report.cells += c.n_ok > 0;
+  report.seconds_per_run = runs > 0 ? run_s / runs : 0.0;
+  report.published_looks = plan.value("looks", nlohmann::json::array());
+  for (RuleReplay* rule : {&report.freeze, &report.redecide}) {
+    rule->settings = settings;
+    rule->settings.rule = rule == &report.freeze ? LookRule::kFreeze : LookRule::kRedecide;
+    rule->settings.futility = o.futility;
+    rule->replay = replay_folder_looks(full, initial, rule->settings, *decision);
+    for (const CellSummary& c : full.cells) {
+      if (c.n_ok == 0) continue;
+      const auto has = rule->replay.state.seeds_of.find(c.key());
+      rule->runs += has == rule->replay.state.seeds_of.end() ? report.initial_seeds : has->second;
+    }
+  }
+  const std::string md = decide_replay_markdown(report);
+  write_file_atomic((dir / "decide-replay.md").string(), md);
+  std::cout << md;
+  return kExitOk;
+}
+
+}  // namespace
+
+Command add_replay_decide_command(CLI::App& parent) {
+  auto o = std::make_shared<ReplayOptions>();
+  CLI::App* sub = parent.add_subcommand(
+      "replay-decide", "Replay a --decide folder's looks on its own per-seed results under both rules (freeze with "
+                       "futility, and the rule before it): runs spent and verdicts, nothing run");
+  sub->add_option("folder", o->folder, "a --decide sweep folder, or its committed reports folder")->required();
+  sub->add_option("--futility", o->futility, "as for rapid sweep --decide (default 0.1)")->check(CLI::Range(0.0, 0.99));
+  return {sub, [o] { return replay_decide_command(*o); }};
+}
+
+}  // namespace rapid

@@ -1,0 +1,181 @@
+#include "experiments/report/decide_replay.hpp"
+
+#include <algorithm>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/json_input.hpp"
+#include "experiments/report/adaptive_seeds.hpp"
+#include "experiments/report/decisions.hpp"
+#include "experiments/report/format.hpp"
+#include "experiments/report/summarize.hpp"
+
+namespace rapid {
+
+DecideSettings decide_settings_of(const nlohmann::json& plan) {
+  DecideSettings s;
+  const auto whole = [&](const char* key, int& field) {
+    const std::optional<long long> v = plan.contains(key) ? json_integer(plan[key]) : std::nullopt;
+    if (!v || *v < 1 || *v > 100000)
+      throw std::invalid_argument(std::string("decide.json: ") + key + " must be a whole number from 1 to 100000");
+    field = static_cast<int>(*v);
+  };
+  whole("block", s.block);
+  whole("max_seeds", s.max_seeds);
+  const nlohmann::json rule = plan.value("rule", nlohmann::json("redecide"));
+  if (rule == "freeze") s.rule = LookRule::kFreeze;
+  else if (rule == "redecide") s.rule = LookRule::kRedecide;
+  else throw std::invalid_argument("decide.json: rule must be \"freeze\" or \"redecide\", got " + rule.dump());
+  if (s.rule == LookRule::kFreeze) {
+    if (!plan.contains("futility") || !plan["futility"].is_number() || !(plan["futility"].get<double>() >= 0.0) ||
+        !(plan["futility"].get<double>() < 1.0))
+      throw std::invalid_argument("decide.json: futility must be a number in [0, 1)");
+    s.futility = plan["futility"].get<double>();
+  }
+  return s;
+}
+
+std::optional<Summary> cells_at(const Summary& full, const std::vector<std::uint64_t>& initial,
+                                const std::map<std::string, int>& seeds_of) {
+  Summary s = full;
+  const std::uint64_t next = initial.empty() ? 0 : *std::max_element(initial.begin(), initial.end()) + 1;
+  for (CellSummary& c : s.cells) {
+    const auto has = seeds_of.find(c.key());
+    const int n = has == seeds_of.end() ? static_cast<int>(initial.size()) : has->second;
+    std::vector<SeedResult> kept;
+    for (int k = 0; k < n; ++k) {
+      const std::uint64_t seed = k < static_cast<int>(initial.size()) ? initial[k] : next + (k - initial.size());
+      const auto r = std::find_if(c.seeds.begin(), c.seeds.end(),
+                                  [&](const SeedResult& x) { return x.seed == seed && x.final_return; });
+      if (r == c.seeds.end()) return std::nullopt;
+      kept.push_back(*r);
+    }
+    c.seeds = std::move(kept);
+    c.finals.clear();
+    for (const SeedResult& r : c.seeds) c.finals.push_back(*r.final_return);
+    c.n_ok = c.n_expected = n;
+  }
+  return s;
+}
+
+LookReplay replay_folder_looks(const Summary& full, const std::vector<std::uint64_t>& initial,
+                               const DecideSettings& settings, DecisionSettings decision) {
+  const int n0 = static_cast<int>(initial.size());
+  decision.looks = decide_looks_max(n0, settings);
+  const std::uint64_t next = initial.empty() ? 0 : *std::max_element(initial.begin(), initial.end()) + 1;
+  const auto at = [&](int look, const std::map<std::string, int>& seeds_of,
+                      const FrozenComparisons& frozen) -> std::optional<Decisions> {
+    if (settings.rule == LookRule::kRedecide) {
+      // Every record up to this look's block: a cell that skipped a look still has its later seeds.
+      Summary s = full;
+      const std::uint64_t bound = next + static_cast<std::uint64_t>(look * settings.block);
+      for (CellSummary& c : s.cells) {
+        std::erase_if(c.seeds, [&](const SeedResult& r) {
+          return std::find(initial.begin(), initial.end(), r.seed) == initial.end() && r.seed >= bound;
+        });
+        c.finals.clear();
+        for (const SeedResult& r : c.seeds)
+          if (r.final_return) c.finals.push_back(*r.final_return);
+        c.n_ok = static_cast<int>(c.finals.size());
+      }
+      for (const auto& [cell, n] : seeds_of)
+        for (const CellSummary& c : s.cells)
+          if (c.key() == cell && c.n_ok < n) return std::nullopt;
+      return decide_claims(s, decision);
+    }
+    const std::optional<Summary> s = cells_at(full, initial, seeds_of);
+    if (!s) return std::nullopt;
+    return decide_claims(*s, decision, frozen);
+  };
+  return replay_looks(at, n0, next, settings);
+}
+
+Summary summary_of_reports(const ReportFolder& folder) {
+  Summary s;
+  s.sweep_dir = folder.sweep.dir;
+  s.grid = folder.sweep.grid;
+  for (const nlohmann::json& j : folder.summary.value("cells", nlohmann::json::array())) {
+    CellSummary c;
+    c.scenario = j.value("scenario", "");
+    c.dataset = j.contains("dataset") && j["dataset"].is_string() ? j["dataset"].get<std::string>() : "";
+    c.algo = j.value("algo", "");
+    const std::string key = cell_key(j, folder.sweep.grid);
+    const auto curves = folder.seed_curves.find(key);
+    for (const nlohmann::json& seed : j.value("seeds", nlohmann::json::array())) {
+      SeedResult r;
+      r.seed = seed.value("seed", std::uint64_t{0});
+      r.status = seed.value("status", "");
+      if (r.status == "ok" && seed.contains("final") && seed["final"].is_number()) r.final_return = seed["final"].get<double>();
+      if (curves != folder.seed_curves.end())
+        if (const auto curve = curves->second.find(r.seed); curve != curves->second.end()) r.eval = curve->second;
+      if (r.final_return) c.finals.push_back(*r.final_return);
+      ++c.statuses[r.status];
+      c.seeds.push_back(std::move(r));
+    }
+    c.n_ok = static_cast<int>(c.finals.size());
+    c.n_expected = static_cast<int>(c.seeds.size());
+    if (!c.finals.empty()) {
+      double sum = 0.0;
+      for (double f : c.finals) sum += f;
+      c.mean = sum / c.finals.size();
+    }
+    s.cells.push_back(std::move(c));
+  }
+  build_table_rows(s);
+  return s;
+}
+
+
+std::string decide_replay_markdown(const DecideReplayReport& r) {
+  std::ostringstream md;
+  const long fixed_max = static_cast<long>(r.cells) * r.freeze.settings.max_seeds;
+  const auto hours = [&](long runs) { return fixed(runs * r.seconds_per_run / 3600.0, 1); };
+  md << "# Adaptive seeds replayed: " << r.name << "\n\n"
+     << "`rapid replay-decide` replays `rapid sweep --decide`'s looks on this folder's "
+     << (r.from_records ? "records" : "committed per-seed results (summary.json's finals, runs.csv's curves)")
+     << " under both rules of docs/decisions.md §Adaptive seeds: **freeze** (a comparison decided once; frozen "
+        "when decided, when no undecided claim needs it, or when futile: conditional power below "
+     << fixed(r.freeze.settings.futility, 2)
+     << " at the maximum) and **redecide** (the rule before issue #42: every look decides every comparison afresh). "
+        "The looks' seeds are the folder's own, in order: every record the replay asks for exists, so it runs "
+        "nothing.";
+  if (!r.from_records)
+    md << " Per-seed BC losses are not in a committed folder, so C6's three comparisons have no values here: "
+          "they count in Holm's family but cannot be decided, and C6 is not replayed (its verdict is the "
+          "folder's own below).";
+  md << "\n\n| rule | looks | runs | share of the fixed " << r.freeze.settings.max_seeds
+     << "-seed design | core-hours (at the folder's mean run time) | verdicts at the end |\n|---|---:|---:|---:|---:|---|\n";
+  for (const RuleReplay* rule : {&r.freeze, &r.redecide}) {
+    const nlohmann::json last = rule->replay.looks.empty() ? nlohmann::json::object() : rule->replay.looks.back();
+    md << "| " << look_rule_name(rule->settings.rule) << " | " << rule->replay.looks.size() << " | " << rule->runs << " | "
+       << fixed(100.0 * rule->runs / fixed_max, 0) << " % | " << hours(rule->runs) << " | " << look_verdicts_text(last) << " |\n";
+  }
+  md << "| fixed, " << r.freeze.settings.max_seeds << " seeds | 1 | " << fixed_max << " | 100 % | " << hours(fixed_max)
+     << " | |\n";
+  if (r.published_looks.is_array() && !r.published_looks.empty())
+    md << "| the folder's own run (decide.json) | " << r.published_looks.size() << " | | | | "
+       << look_verdicts_text(r.published_looks.back()) << " |\n";
+  for (const RuleReplay* rule : {&r.freeze, &r.redecide}) {
+    md << "\n## " << look_rule_name(rule->settings.rule) << ": look by look\n\n| look | verdicts | then |\n|---|---|---|\n";
+    for (const nlohmann::json& look : rule->replay.looks) {
+      std::string then = "the looks stop";
+      if (look.contains("added_seeds"))
+        then = std::to_string(look.value("cells", nlohmann::json::array()).size()) + " cells get seeds " +
+               look["added_seeds"].front().dump() + "-" + look["added_seeds"].back().dump();
+      const std::size_t frozen = look.value("frozen", nlohmann::json::array()).size();
+      if (frozen > 0) then += "; " + std::to_string(frozen) + " comparison" + (frozen == 1 ? "" : "s") + " frozen";
+      md << "| " << look.value("look", 0) << " | " << look_verdicts_text(look) << " | " << then << " |\n";
+    }
+    md << "\nStopped: " << (rule->replay.stop.empty() ? "waiting for records the folder lacks" : rule->replay.stop) << ".\n";
+    if (rule->settings.rule == LookRule::kFreeze) {
+      md << "\n<details><summary>What each look froze</summary>\n\n";
+      for (const nlohmann::json& look : rule->replay.looks)
+        for (const nlohmann::json& line : look.contains("frozen") ? look["frozen"] : nlohmann::json::array())
+          md << "- look " << look.value("look", 0) << ": " << line.get<std::string>() << "\n";
+      md << "\n</details>\n";
+    }
+  }
+  return md.str();
+}
+
+}  // namespace rapid
