@@ -36,6 +36,13 @@ const std::vector<std::string>& weight_init_names() {
 
 const std::string& weight_init_name(WeightInit scheme) { return weight_init_names()[static_cast<int>(scheme)]; }
 
+std::optional<WeightInit> weight_init_from_name(const std::string& name) {
+  const std::vector<std::string>& names = weight_init_names();
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it == names.end()) return std::nullopt;
+  return static_cast<WeightInit>(it - names.begin());
+}
+
 Mlp::Mlp(int input_dim, const std::vector<LayerSpec>& layers) : input_dim_(input_dim), specs_(layers) {
   if (input_dim <= 0) throw std::invalid_argument("Mlp: input dimension must be positive");
   if (layers.empty()) throw std::invalid_argument("Mlp: no layers");

@@ -12,6 +12,7 @@
 // backward pass runs through two scratch gradient buffers instead of one per layer.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,8 @@ enum class WeightInit { kDdpg, kXavier, kPytorch };
 // Their names in configs and records ("ddpg", "xavier", "pytorch"), in the enum's order.
 const std::vector<std::string>& weight_init_names();
 const std::string& weight_init_name(WeightInit scheme);
+// The scheme of a name; nullopt for any other.
+std::optional<WeightInit> weight_init_from_name(const std::string& name);
 
 struct LayerSpec {
   LayerKind kind;

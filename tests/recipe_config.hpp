@@ -20,10 +20,9 @@ inline AgentConfig with_recipe(AgentConfig c, const std::string& name) {
   for (const auto& [key, v] : find_algorithm(name).recipe) {
     if (key == "critic_layer_norm") c.critic_layer_norm = v.get<bool>();
     else if (key == "init") {
-      const std::vector<std::string>& names = weight_init_names();
-      const auto it = std::find(names.begin(), names.end(), v.get<std::string>());
-      if (it == names.end()) ADD_FAILURE() << "recipe init " << v;
-      else c.init = static_cast<WeightInit>(it - names.begin());
+      const std::optional<WeightInit> scheme = weight_init_from_name(v.get<std::string>());
+      if (!scheme) ADD_FAILURE() << "recipe init " << v;
+      else c.init = *scheme;
     } else {
       const float f = v.get<float>();
       const int i = v.get<int>();

@@ -154,10 +154,9 @@ ConfigKey init_key() {
               "biases of every layer: sfujim/TD3_BC; td3-bc's recipe); absent: ddpg",
               nullptr, {}, {}, {}, {}};
   k.read = [name](const nlohmann::json& v, RunConfig& config) {
-    const std::vector<std::string>& names = weight_init_names();
-    const auto it = v.is_string() ? std::find(names.begin(), names.end(), v.get<std::string>()) : names.end();
-    if (it == names.end()) reject(name, "expects one of " + comma_joined(names) + ", got " + json_excerpt(v));
-    config.agent.init = static_cast<WeightInit>(it - names.begin());
+    const std::optional<WeightInit> scheme = v.is_string() ? weight_init_from_name(v.get<std::string>()) : std::nullopt;
+    if (!scheme) reject(name, "expects one of " + comma_joined(weight_init_names()) + ", got " + json_excerpt(v));
+    config.agent.init = *scheme;
   };
   k.write = [](const RunConfig& config) { return nlohmann::json(weight_init_name(config.agent.init)); };
   k.set_neutral = [](RunConfig& config) { config.agent.init = WeightInit::kDdpg; };
