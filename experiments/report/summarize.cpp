@@ -255,7 +255,12 @@ namespace {
 // strictly: its looks_max sets the level α / K of every test, so an unreadable file, or one without
 // a whole looks_max of at least 1, is refused (std::invalid_argument naming the file) instead of
 // quietly deciding at α (issue 46).
-std::optional<nlohmann::json> read_decide_plan(const fs::path& path) {
+struct DecidePlan {
+  nlohmann::json plan;
+  int looks_max = 1;  // validated: a whole number from 1 to 1000
+};
+
+std::optional<DecidePlan> read_decide_plan(const fs::path& path) {
   std::error_code ec;
   if (!fs::exists(fs::symlink_status(path, ec))) return std::nullopt;
   nlohmann::json plan;
@@ -270,7 +275,7 @@ std::optional<nlohmann::json> read_decide_plan(const fs::path& path) {
     throw std::invalid_argument(path.string() + ": looks_max must be a whole number from 1 to 1000, got " +
                                 (plan.is_object() && plan.contains("looks_max") ? json_excerpt(plan["looks_max"]) : "none") +
                                 " (it sets α / K; rapid sweep --decide writes it)");
-  return plan;
+  return DecidePlan{plan, static_cast<int>(*looks)};
 }
 
 }  // namespace
@@ -339,9 +344,10 @@ Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptio
     if (auto settings = load_decision_settings(s.grid.profile)) {
       // A folder that `rapid sweep --decide` has looked at decides at α / (its largest number of looks),
       // and its reports say what the looks spent.
-      const std::optional<nlohmann::json> plan = read_decide_plan(folder.path(sweep_files::kDecide));
+      const std::optional<DecidePlan> decide = read_decide_plan(folder.path(sweep_files::kDecide));
+      const nlohmann::json* plan = decide ? &decide->plan : nullptr;
       if (plan) {
-        settings->looks = static_cast<int>(*json_integer((*plan)["looks_max"]));
+        settings->looks = decide->looks_max;
         try {
           s.adaptive_seeds = adaptive_seeds_summary(*plan, s.cells, s.provenance);
         } catch (const nlohmann::json::exception& e) {

@@ -1,6 +1,5 @@
 #include "experiments/run/job.hpp"
 
-#include <cmath>
 #include <stdexcept>
 
 #include "algos/registry.hpp"
