@@ -34,9 +34,7 @@ int simulate_decide_command(const SimulateOptions& o) {
   if (const auto plan = read_json_file(std::filesystem::path(o.sweep) / sweep_files::kDecide);
       plan && plan->contains("initial_seeds") && (*plan)["initial_seeds"].is_array())
     initial = static_cast<int>((*plan)["initial_seeds"].size());
-  if (o.plan.max_seeds < initial)
-    throw UsageError("--max-seeds: " + std::to_string(o.plan.max_seeds) + " is below the sweep's " +
-                     std::to_string(initial) + " seeds");
+  if (const std::string problem = decide_plan_problem(initial, o.plan); !problem.empty()) throw UsageError(problem);
   const DecideSimulation sim = simulate_decide(observed, initial, o.plan, o.experiments, o.seed);
   const std::string md = decide_simulation_markdown(sim, observed.grid.name);
   write_file_atomic((std::filesystem::path(o.sweep) / "decide-simulation.md").string(), md);

@@ -263,9 +263,9 @@ int sweep_of(const SweepOptions& o, const Grid& grid) {
     throw UsageError(e.what());
   }
   if (o.decide) {
-    if (o.decide_settings.max_seeds < static_cast<int>(grid.seeds.size()))
-      throw UsageError("--max-seeds: " + std::to_string(o.decide_settings.max_seeds) + " is below the grid's " +
-                       std::to_string(grid.seeds.size()) + " seeds");
+    if (const std::string problem = decide_plan_problem(static_cast<int>(grid.seeds.size()), o.decide_settings);
+        !problem.empty())
+      throw UsageError(problem);
     if (!o.only.empty()) throw UsageError("--decide: decides the whole grid; it does not combine with --only");
   }
   if (o.backend == "slurm") {

@@ -12,6 +12,15 @@ namespace rapid {
 
 const char* look_rule_name(LookRule rule) { return rule == LookRule::kFreeze ? "freeze" : "redecide"; }
 
+std::string decide_plan_problem(int initial_seeds, const DecideSettings& settings) {
+  const std::string max = std::to_string(settings.max_seeds), initial = std::to_string(initial_seeds);
+  if (settings.max_seeds < initial_seeds) return "--max-seeds: " + max + " is below the grid's " + initial + " seeds";
+  if ((settings.max_seeds - initial_seeds) % settings.block != 0)
+    return "--block: blocks of " + std::to_string(settings.block) + " from the grid's " + initial + " seeds pass --max-seeds " +
+           max + "; choose a block that divides " + std::to_string(settings.max_seeds - initial_seeds);
+  return "";
+}
+
 int decide_looks_max(int initial_seeds, const DecideSettings& settings) {
   const int room = std::max(0, settings.max_seeds - initial_seeds);
   return 1 + (room + settings.block - 1) / settings.block;

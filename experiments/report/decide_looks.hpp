@@ -32,6 +32,11 @@ struct DecideSettings {
   double futility = 0.10;
 };
 
+// What is wrong with looks of `settings` from `initial_seeds` (one line naming the option), or
+// empty: the maximum below the grid's seeds, or a maximum the blocks would pass (every cell that
+// grows to the end must stop at it, so max_seeds − initial_seeds must be a multiple of block).
+std::string decide_plan_problem(int initial_seeds, const DecideSettings& settings);
+
 // The largest number of looks: the grid's own seeds, then blocks up to the maximum.
 int decide_looks_max(int initial_seeds, const DecideSettings& settings);
 
