@@ -5,6 +5,7 @@
 
 #include "envs/env.hpp"
 #include "envs/scenario_descriptor.hpp"
+#include "experiments/report/interruption.hpp"
 #include "experiments/report/plot.hpp"
 #include "experiments/sweep/state.hpp"
 
@@ -63,6 +64,13 @@ int write_animations(const Summary& summary, const fs::path& out_dir, std::ostre
     log << "animations skipped: no driving cell has finished runs\n";
     return 0;
   }
+  // After a stop signal nothing new starts: not the next cell's rollout, not a drawing (issue 46).
+  const auto stopped = [&] {
+    if (ReportInterruption::signal() == 0) return false;
+    log << "animations stopped: interrupted\n";
+    return true;
+  };
+  if (stopped()) return 0;
   const auto script = find_plot_script();
   if (!script) {
     log << "animations skipped: scripts/plot not found\n";
@@ -83,6 +91,7 @@ int write_animations(const Summary& summary, const fs::path& out_dir, std::ostre
   const std::uint64_t seed = summary.grid.seeds.front();
   int written = 0;
   for (const AnimationPick& pick : picks) {
+    if (stopped()) break;
     const CellSummary& cell = *pick.cell;
     const std::string name = "animation-" + pick.scenario + "-" + pick.which;
     const std::string what = "animation " + pick.scenario + " " + pick.which + ": " + describe(cell) + ", seed " +
@@ -107,6 +116,7 @@ int write_animations(const Summary& summary, const fs::path& out_dir, std::ostre
                                     (run / "actor.ckpt").string(), "--settings-from", run.string(), "--eval-traffic",
                                     "--episodes", "1", "--seed", "0", "--record", trace.string(), "--json"},
                                    /*quiet=*/true);
+    if (stopped()) break;
     if (rolled != 0) {
       log << what << ": skipped (rapid rollout exited " << rolled << ")\n";
       continue;

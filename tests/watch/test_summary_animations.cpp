@@ -3,13 +3,16 @@
 // it rolls the best and the worst cell out and animates them.
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <cstdlib>
+#include <sstream>
 
 #include "core/mlp.hpp"
 #include "core/rng.hpp"
 #include "experiments/report/summarize.hpp"
 #include "experiments/report/summary.hpp"
 #include "experiments/report/animations.hpp"
+#include "experiments/report/interruption.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
 #include "tests/reports/report_test_util.hpp"
@@ -108,6 +111,30 @@ TEST_F(SummaryAnimations, AnimatesTheBestAndTheWorstCell) {
     EXPECT_EQ(trace["traffic"], "evaluation");
     EXPECT_EQ(trace["episodes"].size(), 1u);
   }
+}
+
+// A stop signal during the animations: nothing new starts after it (issue 46: the worst cell's
+// rollout started 0.06 s after a SIGINT and wrote its trace before the exit 130). Caught before the
+// first pick here, so neither cell is rolled out.
+TEST_F(SummaryAnimations, NothingNewStartsAfterAStopSignal) {
+  give_checkpoint("final", "rapid-rl");
+  give_checkpoint("initial", "col-all");
+  SummaryOptions options;
+  options.dataset_stats = false;
+  options.claims = false;
+  const Summary summary = build_summary(sweep, options);
+  std::ostringstream log;
+  int written = -1;
+  {
+    ReportInterruption guard;
+    std::raise(SIGINT);
+    ASSERT_EQ(ReportInterruption::signal(), SIGINT);
+    written = write_animations(summary, sweep, log);
+  }
+  EXPECT_EQ(written, 0);
+  EXPECT_NE(log.str().find("animations stopped: interrupted"), std::string::npos) << log.str();
+  for (const char* which : {"best", "worst"})
+    EXPECT_FALSE(std::filesystem::exists(sweep / (std::string("animation-merge-") + which + ".trace.json"))) << which;
 }
 
 }  // namespace
