@@ -69,6 +69,8 @@ int summarize_sweep(const std::string& sweep_dir, const std::string& out_dir, bo
   const fs::path out = out_dir.empty() ? fs::path(sweep_dir) : fs::path(out_dir);
   if (!out_dir.empty()) refuse_foreign_folder(out, "--out", {"summary.json", "grid.json"}, "a reports or sweep folder", force);
   make_output_folder(out, out_dir.empty() ? "SWEEP_DIR" : "--out");
+  if (const std::string in_the_way = report_file_in_the_way(out); !in_the_way.empty())
+    throw UsageError((out_dir.empty() ? "SWEEP_DIR: " : "--out: ") + in_the_way + "; no report was written");
   write_reports(summary, out, std::cout);
   if (interrupted()) return kExitInterrupted;
   FiguresResult figures = FiguresResult::kDone;

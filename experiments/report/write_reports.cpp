@@ -15,6 +15,22 @@ namespace rapid {
 
 namespace fs = std::filesystem;
 
+const std::vector<std::string>& report_file_names() {
+  static const std::vector<std::string> names = {
+      "table.md",    "table.tex",   "table.csv",    "runs.csv",     "summary.json", "claims.md",   "report.html",
+      "figure2.png", "figure2.pdf", "figure3a.png", "figure3a.pdf", "figure3b.png", "figure3b.pdf"};
+  return names;
+}
+
+std::string report_file_in_the_way(const fs::path& out_dir) {
+  for (const std::string& name : report_file_names()) {
+    const std::string path = (out_dir / name).string();
+    if (const std::string kind = not_a_regular_file(path); !kind.empty())
+      return path + " is " + kind + ", not a regular file";
+  }
+  return "";
+}
+
 void write_reports(const Summary& summary, const fs::path& out_dir, std::ostream& out) {
   write_file_atomic((out_dir / "table.md").string(), table_markdown(summary));
   write_file_atomic((out_dir / "table.tex").string(), table_latex(summary));

@@ -5,10 +5,20 @@
 
 #include <filesystem>
 #include <ostream>
+#include <string>
+#include <vector>
 
 #include "experiments/report/summary.hpp"
 
 namespace rapid {
+
+// Every file `rapid summarize` writes into a reports folder: the reports, the page and the figures.
+const std::vector<std::string>& report_file_names();
+
+// The first of `out_dir`'s report files (report_file_names) that exists and is not a regular file
+// (a symlink, FIFO, device or folder), with what it is, or empty: checked before anything is
+// written, so that such a file stops the command with nothing rewritten.
+std::string report_file_in_the_way(const std::filesystem::path& out_dir);
 
 // Writes the five report files of `summary` into `out_dir` (an existing folder) and says on
 // `out` what it wrote, with the claims' verdicts.

@@ -57,6 +57,23 @@ TEST_F(ReportCliTest, SummarizeWritesEveryReportAndShowsFailedSeeds) {
   EXPECT_NE(claims.find("Point-mean check (not a decision): PASS. PASS when CoL-all's mean"), std::string::npos) << claims;
 }
 
+// A report file that is a symlink (or FIFO, device, folder) is refused before any report is
+// rewritten: one line naming it, exit 2, the other reports as they were (issue 46 item 14).
+TEST_F(ReportCliTest, AReportFileInTheWayStopsSummarizeBeforeAnythingIsWritten) {
+  ASSERT_EQ(rapid_cli("summarize " + sweep.string() + " --no-plots", true).exit_code, 0);
+  report_test::write_text(sweep / "table.md", "the table as it was\n");
+  const std::filesystem::path elsewhere = scratch.path() / "elsewhere.md";
+  report_test::write_text(elsewhere, "not a report\n");
+  std::filesystem::remove(sweep / "claims.md");
+  std::filesystem::create_symlink(elsewhere, sweep / "claims.md");
+  const auto out = rapid_cli("summarize " + sweep.string() + " --no-plots", true);
+  EXPECT_EQ(out.exit_code, 2) << out.text;
+  EXPECT_NE(out.text.find("claims.md is a symlink, not a regular file; no report was written"), std::string::npos)
+      << out.text;
+  EXPECT_EQ(report_test::read_text(sweep / "table.md"), "the table as it was\n");
+  EXPECT_EQ(report_test::read_text(elsewhere), "not a report\n");
+}
+
 TEST_F(ReportCliTest, SummarizeSaysSoWhenPythonHasNoMatplotlib) {
   ::setenv("RAPID_PYTHON", "/nonexistent/python3", 1);
   const auto out = rapid_cli("summarize " + sweep.string(), true);
