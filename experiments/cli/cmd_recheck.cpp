@@ -23,6 +23,7 @@ namespace fs = std::filesystem;
 
 struct RecheckOptions {
   std::string sweep, seeds, out;
+  bool force = false;
   int jobs = 0;
 };
 
@@ -107,6 +108,11 @@ int recheck_command(const RecheckOptions& o) {
   fs::path sweep_path = fs::path(o.sweep).lexically_normal();
   if (sweep_path.filename().empty()) sweep_path = sweep_path.parent_path();  // "runs/x/" names runs/x
   const fs::path out = o.out.empty() ? fs::path(sweep_path.string() + "-recheck") : fs::path(o.out);
+  // Another grid's sweep folder is not rewritten unasked; this recheck's own folder resumes.
+  if (const auto existing = read_json_file(out / sweep_files::kGrid);
+      !o.force && existing && existing->is_object() && existing->value("name", nlohmann::json()) != grid.name)
+    throw UsageError("--out: '" + out.string() + "' is the sweep folder of grid " + existing->value("name", nlohmann::json()).dump() +
+                     ", not this recheck's ('" + grid.name + "'); name a new folder, or add --force to write into it");
   const int code = sweep_grid(grid, out.string(), o.sweep, o.jobs);
   if (code != kExitOk && code != kExitFailed) return code;  // interrupted: no comparison
   const std::string text = recheck_markdown(build_summary(original.dir), build_summary(out));
@@ -124,6 +130,7 @@ Command add_recheck_command(CLI::App& parent) {
   sub->add_option("SWEEP_DIR", o->sweep, "a finished (or partial) sweep folder")->required();
   sub->add_option("--seeds", o->seeds, "the new seeds: A-B or a comma-separated list (none of the sweep's)")->required();
   sub->add_option("--out", o->out, "the recheck's sweep folder (default: SWEEP_DIR-recheck)");
+  sub->add_flag("--force", o->force, "write into an --out folder that is another grid's sweep folder");
   sub->add_option("--jobs,-j", o->jobs, "worker processes (default: the number of cores)")->check(CLI::Range(1, 1024));
   return {sub, [o] { return recheck_command(*o); }};
 }

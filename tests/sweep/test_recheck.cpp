@@ -46,6 +46,18 @@ TEST(Recheck, RerunsTheCellsOnNewSeedsFromTheSweepsDatasetsAndComparesTheVerdict
   const Result none = run_rapid("recheck " + (dir.path() / "nothing").string() + " --seeds 5-6");
   EXPECT_EQ(none.exit_code, 2);
   EXPECT_NE(none.output.find("SWEEP_DIR: "), std::string::npos) << none.output;
+
+  // --out at another grid's sweep folder (here the original itself) is refused, not rewritten.
+  const nlohmann::json before = read_json(sweep / "grid.json");
+  const Result other = run_rapid("recheck " + sweep.string() + " --seeds 200-201 --out " + sweep.string());
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_NE(other.output.find("is the sweep folder of grid \"g\", not this recheck's ('g-recheck')"), std::string::npos)
+      << other.output;
+  EXPECT_EQ(read_json(sweep / "grid.json"), before);
+  EXPECT_FALSE(fs::exists(sweep / "jobs/pendulum/none/ddpg/seed200"));
+  // The recheck's own folder resumes: nothing new to run.
+  const Result again = run_rapid("recheck " + sweep.string() + " --seeds 100-101 --jobs 2");
+  EXPECT_EQ(again.exit_code, 0) << again.output;
 }
 
 }  // namespace
