@@ -192,6 +192,8 @@ int submit_to_slurm(const SweepOptions& o, SweepFolder& folder, const Selection&
     print_slurm_plan(folder, plan, options);
     return kExitOk;
   }
+  if (!program_on_path("sbatch"))
+    throw UsageError("--backend slurm: sbatch is not on PATH (not a Slurm login node?); nothing was written");
   try {
     const std::vector<std::string> queued = queued_slurm_jobs(folder);
     if (!queued.empty()) {

@@ -15,9 +15,6 @@ const char* look_rule_name(LookRule rule) { return rule == LookRule::kFreeze ? "
 std::string decide_plan_problem(int initial_seeds, const DecideSettings& settings) {
   const std::string max = std::to_string(settings.max_seeds), initial = std::to_string(initial_seeds);
   if (settings.max_seeds < initial_seeds) return "--max-seeds: " + max + " is below the grid's " + initial + " seeds";
-  if ((settings.max_seeds - initial_seeds) % settings.block != 0)
-    return "--block: blocks of " + std::to_string(settings.block) + " from the grid's " + initial + " seeds pass --max-seeds " +
-           max + "; choose a block that divides " + std::to_string(settings.max_seeds - initial_seeds);
   return "";
 }
 
@@ -147,14 +144,16 @@ LookReplay replay_looks(const DecideAtLook& at, int initial_seeds, std::uint64_t
       r.grow.clear();
       return r;
     }
+    // Under freeze every growing cell has the grid's seeds and a block per look so far, so the last
+    // block is cut to end at the maximum (redecide's cells need not be in step: it kept whole blocks).
+    const int have = initial_seeds + look * settings.block;
+    const int add = settings.rule == LookRule::kFreeze ? std::min(settings.block, settings.max_seeds - have) : settings.block;
     std::vector<std::uint64_t> block;
-    for (int k = 0; k < settings.block; ++k)
-      block.push_back(next_seed + static_cast<std::uint64_t>(look * settings.block + k));
+    for (int k = 0; k < add; ++k) block.push_back(next_seed + static_cast<std::uint64_t>(look * settings.block + k));
     entry["added_seeds"] = block;
     entry["cells"] = std::vector<std::string>(next.grow.begin(), next.grow.end());
     r.looks.push_back(entry);
-    for (const std::string& cell : next.grow)
-      r.state.seeds_of.try_emplace(cell, initial_seeds).first->second += settings.block;
+    for (const std::string& cell : next.grow) r.state.seeds_of.try_emplace(cell, initial_seeds).first->second += add;
     r.grow = std::move(next.grow);
   }
 }

@@ -33,8 +33,8 @@ struct DecideSettings {
 };
 
 // What is wrong with looks of `settings` from `initial_seeds` (one line naming the option), or
-// empty: the maximum below the grid's seeds, or a maximum the blocks would pass (every cell that
-// grows to the end must stop at it, so max_seeds − initial_seeds must be a multiple of block).
+// empty: the maximum below the grid's seeds. (Under freeze a last block that would pass the
+// maximum is cut to end at it.)
 std::string decide_plan_problem(int initial_seeds, const DecideSettings& settings);
 
 // The largest number of looks: the grid's own seeds, then blocks up to the maximum.
@@ -88,7 +88,8 @@ struct LookReplay {
 
 // The looks replayed from the grid's seeds: decide, freeze, grow, until they stop or the next
 // block's records are missing. A look's block is the `block` seeds from `next_seed` + look × block
-// (the numbers after the grid's largest seed). Deterministic in what `at` returns.
+// (the numbers after the grid's largest seed), under freeze cut so that no cell passes the maximum.
+// Deterministic in what `at` returns.
 LookReplay replay_looks(const DecideAtLook& at, int initial_seeds, std::uint64_t next_seed, const DecideSettings& settings);
 
 }  // namespace rapid

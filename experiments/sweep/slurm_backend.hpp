@@ -93,6 +93,9 @@ std::string submit_slurm_follow_up(const SweepFolder& folder, const SlurmPlan& p
 // squeue cannot be run.
 std::vector<std::string> queued_slurm_jobs(const SweepFolder& folder);
 
+// Whether an executable named `program` is in one of PATH's folders (sbatch: a Slurm login node).
+bool program_on_path(const std::string& program);
+
 // Rejects sbatch arguments that are not options or that rapid sets itself (--array, --chdir, …).
 // Throws std::invalid_argument naming the argument.
 void check_sbatch_args(const std::vector<std::string>& args);

@@ -214,6 +214,16 @@ TEST_F(DecisionsTest, FutilityStopsWhatTheMaximumCannotDecideAtTheFirstLook) {
   EXPECT_DOUBLE_EQ(hopeless.adaptive.runs, 10.0 * hopeless.cells);
   EXPECT_GT(hopeless.adaptive.futile, 0.0);
   EXPECT_DOUBLE_EQ(hopeless.redecide.looks, 5.0);
+  // Without futility the looks grow them to the maximum and no further, a last block cut short to
+  // end there (issue 46: blocks of 5 from 10 seeds up to 12 gave cells 15 under the rule before).
+  drawn.clear();
+  const DecideSimulation cut = simulate_decide(s, 10, {.block = 5, .max_seeds = 12, .futility = 0.0}, 5, 9,
+                                               [&](const CellSummary& c, Rng&) {
+                                                 const int k = drawn[c.key()]++;
+                                                 return seed_with(500.0 + 1e6 * std::sin(k));
+                                               });
+  EXPECT_DOUBLE_EQ(cut.adaptive.runs, 12.0 * cut.cells);
+  EXPECT_DOUBLE_EQ(cut.adaptive.looks, 2.0);
   EXPECT_DOUBLE_EQ(hopeless.redecide.runs, 30.0 * hopeless.cells);
   EXPECT_DOUBLE_EQ(hopeless.fixed_max.runs, 30.0 * hopeless.cells);
 }

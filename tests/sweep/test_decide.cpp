@@ -105,13 +105,6 @@ TEST(Decide, AddsBlocksOfSeedsToUndecidedCellsAndResumesWithoutRerunning) {
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.output.find("--max-seeds: 2 is below the grid's 3 seeds"), std::string::npos) << bad.output;
   EXPECT_FALSE(fs::exists(dir.path() / "x"));
-  // Blocks that would pass the maximum (a cell at 8 while the reports say 5) are refused (issue 46).
-  const Result past = run_rapid("sweep " + (dir.path() / "three.json").string() + " --decide --max-seeds 5 --block 5 --out " +
-                                (dir.path() / "x").string());
-  EXPECT_EQ(past.exit_code, 2);
-  EXPECT_NE(past.output.find("--block: blocks of 5 from the grid's 3 seeds pass --max-seeds 5"), std::string::npos)
-      << past.output;
-  EXPECT_FALSE(fs::exists(dir.path() / "x"));
 }
 
 // A scheduler (the Slurm backend) takes a look's jobs and the looks go on in a later process: that

@@ -95,6 +95,16 @@ TEST(SweepCli, InvalidJsonMissingFileBadOptionsAndBadStatusFolder) {
     EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << ": " << r.output;
     EXPECT_FALSE(fs::exists(out)) << c.args;
   }
+  // --backend slurm where sbatch is not on PATH: refused before the folder is made (issue 46: 8
+  // files were written before exit 1).
+  const char* path = std::getenv("PATH");
+  const std::string saved = path ? path : "";
+  ::setenv("PATH", dir.path().c_str(), 1);
+  const Result no_sbatch = run_rapid("sweep " + good.string() + " --backend slurm --decide" + tail);
+  ::setenv("PATH", saved.c_str(), 1);
+  EXPECT_EQ(no_sbatch.exit_code, 2) << no_sbatch.output;
+  EXPECT_NE(no_sbatch.output.find("--backend slurm: sbatch is not on PATH"), std::string::npos) << no_sbatch.output;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 // Grid files no grid would be, and --out values that are no folder: exit 2, one short line naming
