@@ -119,7 +119,11 @@ class Reader {
   // A path relative to the descriptor's folder, which must name an existing file.
   std::string file(const json& o, const std::string& key, const std::string& where) const {
     const fs::path path = (dir_ / text(o, key, where)).lexically_normal();
-    if (!fs::is_regular_file(path)) fail(where, "no such file " + path.string());
+    std::error_code ec;  // a symlink loop makes the throwing overload say "Too many levels…" with exit 1 (issue 46)
+    const bool regular = fs::is_regular_file(path, ec);
+    if (ec && ec != std::errc::no_such_file_or_directory)
+      fail(where, path.string() + " cannot be read: " + ec.message());
+    if (!regular) fail(where, "no such file " + path.string());
     return path.string();
   }
 
@@ -521,7 +525,8 @@ std::shared_ptr<const ScenarioDescriptor> scenario_descriptor(const std::string&
   }
   if (!registered.empty()) return scenario_descriptor(registered);
   const std::string path = is_scenario_file(name) ? name : network_dir() + "/" + name + "/scenario.json";
-  if (!is_scenario_file(name) && !fs::exists(path))
+  std::error_code exists_error;
+  if (!is_scenario_file(name) && !fs::exists(path, exists_error))
     throw std::invalid_argument("scenario '" + printable(name) + "': its descriptor " + path +
                                 " is missing: build the 'rapid_networks' target or set RAPID_NETWORK_DIR");
   const std::string key = fs::absolute(path).lexically_normal().string();

@@ -175,6 +175,16 @@ TEST_F(ScenarioFile, AWrongDescriptorIsRefusedNamingTheFieldBeforeAnythingIsWrit
   const std::vector<BadDescriptor> cases = {
       {"a missing network file", [](nlohmann::json& d, const fs::path&) { d["networks"]["default"]["net"] = "nowhere.net.xml"; },
        "networks.default.net: no such file"},
+      {"a network file that is a symlink loop",
+       [](nlohmann::json& d, const fs::path& file) {
+         const fs::path dir = file.parent_path();
+         fs::remove(dir / "loop.net.xml");
+         fs::remove(dir / "loop2.net.xml");
+         fs::create_symlink(dir / "loop2.net.xml", dir / "loop.net.xml");
+         fs::create_symlink(dir / "loop.net.xml", dir / "loop2.net.xml");
+         d["networks"]["default"]["net"] = "loop.net.xml";
+       },
+       "loop.net.xml cannot be read: Too many levels of symbolic links"},
       {"an edge not in the network", [](nlohmann::json& d, const fs::path&) { d["road"] = {"road", "bridge"}; },
        "road: edge 'bridge' is not in"},
       {"a route not in the routes", [](nlohmann::json& d, const fs::path&) { d["ego"]["route"] = "detour"; },

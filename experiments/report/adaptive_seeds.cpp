@@ -1,6 +1,8 @@
 #include "experiments/report/adaptive_seeds.hpp"
 
+#include <algorithm>
 #include <map>
+#include <stdexcept>
 #include <sstream>
 
 #include "experiments/report/format.hpp"
@@ -57,12 +59,38 @@ std::string rule_text(const nlohmann::json& a) {
          fixed(a.value("futility", 0.0), 2) + " (futile); only the cells of comparisons still live get seeds.";
 }
 
+void check_decide_looks(const nlohmann::json& looks) {
+  const auto bad = [](std::size_t i, const std::string& field, const std::string& expected) {
+    throw std::invalid_argument("looks[" + std::to_string(i) + "]." + field + ": expected " + expected);
+  };
+  const auto strings = [](const nlohmann::json& v) {
+    return v.is_array() && std::all_of(v.begin(), v.end(), [](const nlohmann::json& x) { return x.is_string(); });
+  };
+  for (std::size_t i = 0; i < looks.size(); ++i) {
+    const nlohmann::json& look = looks[i];
+    if (!look.is_object()) bad(i, "", "an object");
+    if (!look.contains("look") || !look["look"].is_number_integer()) bad(i, "look", "a whole number");
+    if (look.contains("verdicts") &&
+        (!look["verdicts"].is_object() ||
+         !std::all_of(look["verdicts"].begin(), look["verdicts"].end(), [](const nlohmann::json& v) { return v.is_string(); })))
+      bad(i, "verdicts", "an object of claim: verdict");
+    if (look.contains("added_seeds") &&
+        (!look["added_seeds"].is_array() || look["added_seeds"].empty() ||
+         !std::all_of(look["added_seeds"].begin(), look["added_seeds"].end(),
+                      [](const nlohmann::json& v) { return v.is_number_unsigned(); })))
+      bad(i, "added_seeds", "a list of seeds");
+    if (look.contains("cells") && !strings(look["cells"])) bad(i, "cells", "a list of cell names");
+    if (look.contains("frozen") && !strings(look["frozen"])) bad(i, "frozen", "a list of lines");
+  }
+}
+
 nlohmann::json adaptive_seeds_summary(const nlohmann::json& plan, const std::vector<CellSummary>& cells,
                                       const RunProvenance& provenance) {
   if (!plan.is_object() || !plan.contains("initial_seeds") || !plan["initial_seeds"].is_array() ||
       !integer(plan, "block") || !integer(plan, "max_seeds") || !integer(plan, "looks_max") ||
       !plan.contains("looks") || !plan["looks"].is_array())
     return nullptr;
+  check_decide_looks(plan["looks"]);
   const long initial = static_cast<long>(plan["initial_seeds"].size());
   const long max_seeds = plan["max_seeds"].get<long>();
   std::map<int, int> seeds_per_cell;  // ok seeds → cells with that many

@@ -15,8 +15,12 @@
 
 namespace rapid {
 
+// Throws std::invalid_argument naming the field ("looks[2].look: expected a whole number") when a
+// look of decide.json is not what `rapid sweep --decide` writes: the reports render every field.
+void check_decide_looks(const nlohmann::json& looks);
+
 // "adaptive_seeds" of summary.json from the folder's decide.json (`plan`) and its cells; null when
-// `plan` is not a decide plan with looks.
+// `plan` is not a decide plan with looks. Its looks are checked (check_decide_looks).
 nlohmann::json adaptive_seeds_summary(const nlohmann::json& plan, const std::vector<CellSummary>& cells,
                                       const RunProvenance& provenance);
 

@@ -352,6 +352,8 @@ Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptio
           s.adaptive_seeds = adaptive_seeds_summary(*plan, s.cells, s.provenance);
         } catch (const nlohmann::json::exception& e) {
           throw std::invalid_argument(folder.path(sweep_files::kDecide).string() + ": a field has the wrong type: " + e.what());
+        } catch (const std::invalid_argument& e) {
+          throw std::invalid_argument(folder.path(sweep_files::kDecide).string() + ": " + e.what());
         }
       }
       // Under the freeze rule a comparison keeps the outcome of the look that froze it, so the

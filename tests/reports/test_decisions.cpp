@@ -90,7 +90,12 @@ TEST_F(DecisionsTest, AnUnreadableDecideFileIsRefusedNotDecidedAtAlpha) {
     return std::string("accepted");
   };
   for (const std::string bad : {"{\"looks_max\": ", "[]", "{}", "{\"looks_max\": 0}", "{\"looks_max\": -3}",
-                                "{\"looks_max\": \"5\"}", "{\"looks_max\": 9223372036854775808}"}) {
+                                "{\"looks_max\": \"5\"}", "{\"looks_max\": 9223372036854775808}",
+                                // A look the reports cannot render (issue 46: a string look was a type_error, exit 1).
+                                "{\"looks_max\": 5, \"initial_seeds\": [0], \"block\": 5, \"max_seeds\": 30, "
+                                "\"looks\": [{\"look\": \"0\"}]}",
+                                "{\"looks_max\": 5, \"initial_seeds\": [0], \"block\": 5, \"max_seeds\": 30, "
+                                "\"looks\": [{\"look\": 0, \"added_seeds\": [-1]}]}"}) {
     const std::string message = refusal(bad);
     EXPECT_EQ(message.rfind(decide.string() + ": ", 0), 0u) << bad << ": " << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
