@@ -47,13 +47,6 @@ double incomplete_beta(double a, double b, double x) {
   return 1.0 - std::exp(log_front) * beta_continued_fraction(b, a, 1.0 - x) / b;
 }
 
-double sample_variance(std::span<const double> v) {
-  const double m = mean(v);
-  double s = 0.0;
-  for (double x : v) s += (x - m) * (x - m);
-  return s / static_cast<double>(v.size() - 1);
-}
-
 }  // namespace
 
 double student_t_cdf(double t, double df) {

@@ -19,6 +19,14 @@ double mean(std::span<const double> values) {
   return std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
 }
 
+double sample_variance(std::span<const double> values) {
+  if (values.size() < 2) return 0.0;
+  const double m = mean(values);
+  double sum_sq = 0.0;
+  for (double x : values) sum_sq += (x - m) * (x - m);
+  return sum_sq / static_cast<double>(values.size() - 1);
+}
+
 double population_std(std::span<const double> values) {
   if (values.empty()) return kNaN;
   const double m = mean(values);

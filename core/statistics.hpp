@@ -22,6 +22,8 @@ namespace rapid {
 double mean(std::span<const double> values);
 // Population standard deviation (ddof = 0); NaN for none, 0 for one value.
 double population_std(std::span<const double> values);
+// Sample variance (ddof = 1); 0 for fewer than two values.
+double sample_variance(std::span<const double> values);
 
 // Interquartile mean, scipy.stats.trim_mean(values, 0.25) as rliable uses it: sort, drop
 // floor(n / 4) values from each end, average the rest (8 values: the middle 4; 3 values: all).

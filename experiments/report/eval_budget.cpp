@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/statistics.hpp"
 #include "experiments/report/cell_records.hpp"
 #include "experiments/report/format.hpp"
 #include "experiments/report/summary.hpp"
@@ -16,20 +17,6 @@
 namespace rapid {
 
 namespace {
-
-double mean(const std::vector<double>& v) {
-  double sum = 0.0;
-  for (double x : v) sum += x;
-  return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
-}
-
-double sample_variance(const std::vector<double>& v) {
-  if (v.size() < 2) return 0.0;
-  const double m = mean(v);
-  double ss = 0.0;
-  for (double x : v) ss += (x - m) * (x - m);
-  return ss / static_cast<double>(v.size() - 1);
-}
 
 // The weights of the normalised trapezoid area over `steps` (curves.hpp's normalized_area).
 std::vector<double> area_weights(const std::vector<double>& steps) {
