@@ -1,6 +1,11 @@
 #include "experiments/run/job.hpp"
 
+#include <sys/stat.h>
+
+#include <map>
+#include <mutex>
 #include <stdexcept>
+#include <tuple>
 
 #include "algos/registry.hpp"
 #include "core/atomic_file.hpp"
@@ -39,10 +44,29 @@ RunConfig check_config_fits(const std::string& algo, const nlohmann::json& confi
   return parsed;
 }
 
+namespace {
+// A dataset file's content hash, remembered per file identity (device, inode, size, modification
+// time): a sweep's or a tuning's readers check hundreds of records against the same few 16 MB
+// datasets, and a dataset is only ever replaced by an atomic rename (a new inode), never edited.
+std::string dataset_content_hash(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return fnv1a_hex(read_file(path));  // read_file says what is wrong
+  using Identity = std::tuple<dev_t, ino_t, off_t, long, long>;
+  static std::map<std::string, std::pair<Identity, std::string>> known;
+  static std::mutex guard;  // readers may hash from several threads
+  const std::lock_guard lock(guard);
+  const Identity id{st.st_dev, st.st_ino, st.st_size, st.st_mtim.tv_sec, st.st_mtim.tv_nsec};
+  if (const auto it = known.find(path); it != known.end() && it->second.first == id) return it->second.second;
+  std::string hash = fnv1a_hex(read_file(path));
+  known[path] = {id, hash};
+  return hash;
+}
+}  // namespace
+
 std::string job_config_hash(const JobSpec& spec) {
   nlohmann::json key = {{"scenario", spec.scenario}, {"algo", spec.algo}, {"seed", spec.seed},
                         {"config", spec.config}, {"dataset", nullptr}};
-  if (!spec.dataset_path.empty()) key["dataset"] = fnv1a_hex(read_file(spec.dataset_path));
+  if (!spec.dataset_path.empty()) key["dataset"] = dataset_content_hash(spec.dataset_path);
   if (!spec.checkpoint_steps.empty()) key["checkpoint_steps"] = spec.checkpoint_steps;
   // What the algorithm's recipe fills is part of what the job runs: a binary whose recipe changed
   // (rlpd-sac's temperature rate, td3-bc's critics) reruns those jobs instead of resuming them.
