@@ -18,7 +18,7 @@ void load_grid_scenarios(const std::string& grid_path) {
 }
 
 nlohmann::json resolve_cli_config(const std::string& scenario, const std::string& profile, const std::string& grid_path,
-                                  const nlohmann::json& set_overrides) {
+                                  const nlohmann::json& set_overrides, const std::string& algo) {
   std::string chosen = profile.empty() ? kDefaultProfile : profile;
   nlohmann::json overrides;
   if (!grid_path.empty()) {
@@ -26,7 +26,7 @@ nlohmann::json resolve_cli_config(const std::string& scenario, const std::string
     if (!profile.empty() && profile != grid.profile)
       throw std::invalid_argument("--profile: '" + profile + "' differs from the grid's profile '" + grid.profile + "'");
     chosen = grid.profile;
-    overrides = grid_overrides(grid, scenario);
+    overrides = grid_overrides(grid, scenario, algo);
   }
   try {
     check_profile(chosen, scenario);

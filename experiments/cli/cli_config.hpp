@@ -14,7 +14,9 @@ namespace rapid {
 // FIELD: problem", as every command says it.
 void load_grid_scenarios(const std::string& grid_path);
 
+// `algo`: a run's algorithm, whose "algo_config" overrides the grid gives it; empty for a dataset
+// build, which reads the scenario's config alone.
 nlohmann::json resolve_cli_config(const std::string& scenario, const std::string& profile, const std::string& grid_path,
-                                  const nlohmann::json& set_overrides);
+                                  const nlohmann::json& set_overrides, const std::string& algo = "");
 
 }  // namespace rapid

@@ -25,7 +25,8 @@ namespace fs = std::filesystem;
 
 const std::set<std::string> kTopLevelKeys = {"name",   "description",     "scenarios", "datasets",    "algos",
                                              "seeds",  "config",          "scenario_config", "reference",
-                                             "max_retries", "jobs", "profile", "axes", "scenario_files"};
+                                             "max_retries", "jobs", "profile", "axes", "scenario_files",
+                                             "algo_config"};
 // An axis longer than this is a mistake, not a study (each value is validated against the config).
 constexpr std::size_t kMaxAxisValues = 1000;
 // The double the default float came from, so grid.json shows 0.1 rather than 0.100000001.
@@ -334,6 +335,42 @@ void check_axis_values(const GridChecker& check, const Grid& grid) {
   }
 }
 
+// "algo_config": scenario → algorithm → overrides of that algorithm's cells. A key the reference
+// agent or the datasets depend on through the scenario, an axis key, or a key the algorithm
+// ignores would make cells disagree with their data, their folder or their hash: refused.
+void parse_algo_config(const GridChecker& check, const json& doc, Grid& grid) {
+  const json& per_scenario = check.object_or_empty(doc, "algo_config");
+  for (const auto& [scenario, per_algo] : per_scenario.items()) {
+    const std::string field = "algo_config." + scenario;
+    if (std::find(grid.scenarios.begin(), grid.scenarios.end(), scenario) == grid.scenarios.end())
+      check.fail(field, "'" + scenario + "' is not one of the grid's scenarios");
+    if (!per_algo.is_object()) check.fail(field, "expected an object algorithm → overrides, got " + json_excerpt(per_algo));
+    for (const auto& [algo, overrides] : per_algo.items()) {
+      const std::string at = field + "." + algo;
+      if (std::find(grid.algos.begin(), grid.algos.end(), algo) == grid.algos.end())
+        check.fail(at, "'" + algo + "' is not one of the grid's algorithms");
+      if (!overrides.is_object()) check.fail(at, "expected an object of config overrides, got " + json_excerpt(overrides));
+      for (const auto& [key, value] : overrides.items()) {
+        const ConfigKey* k = find_config_key(key);
+        if (k == nullptr) check.fail(at + "." + key, "'" + key + "' is not a config key (docs/algorithms.md lists them)");
+        if (k->part == ConfigPart::kScenario)
+          check.fail(at + "." + key, "a scenario key; the reference agent and the datasets would not see it (use scenario_config)");
+        if (!find_algorithm(algo).reads(key)) check.fail(at + "." + key, "'" + algo + "' does not read '" + key + "'");
+        for (const GridAxis& axis : grid.axes)
+          if (axis.key == key) check.fail(at + "." + key, "'" + key + "' is an axis of the grid");
+      }
+      json config = cell_config(grid, scenario);
+      try {
+        apply_overrides(config, overrides, scenario, at);
+        run_config_from_json(config, scenario);
+      } catch (const std::invalid_argument& e) {
+        check.fail(at, without_prefix(e.what(), at + ": "));
+      }
+    }
+  }
+  grid.algo_config = per_scenario;
+}
+
 // Every algorithm must find the keys it needs in each scenario's resolved config (rapid-rl-return:
 // return_horizon), or every one of its jobs would fail. An axis may give the key, so each point
 // the algorithm reads is checked.
@@ -343,7 +380,7 @@ void check_algorithms_fit(const GridChecker& check, const Grid& grid) {
       const Algorithm& info = find_algorithm(algo);
       for (const AxisPoint& point : axis_points(grid, scenario, [&](const std::string& key) { return info.reads(key); })) {
         try {
-          check_config_fits(algo, cell_config(grid, scenario, point), scenario);
+          check_config_fits(algo, cell_config(grid, scenario, point, algo), scenario);
         } catch (const std::invalid_argument& e) {
           check.fail("algos", e.what());
         }
@@ -420,6 +457,7 @@ Grid parse_grid(const json& doc, const std::string& label) {
   }
   check_overrides(check, grid);
   check_axis_values(check, grid);
+  parse_algo_config(check, doc, grid);
   check_algorithms_fit(check, grid);
   parse_reference_steps(check, check.object_or_empty(doc, "reference"), grid);
   check_references_learn(check, grid);
@@ -447,9 +485,11 @@ Grid load_grid(const std::string& path) {
   return parse_grid(doc, path);
 }
 
-json grid_overrides(const Grid& grid, const std::string& scenario) {
+json grid_overrides(const Grid& grid, const std::string& scenario, const std::string& algo) {
   json out = grid.config;
   if (grid.scenario_config.contains(scenario)) out.update(grid.scenario_config[scenario]);
+  if (!algo.empty() && grid.algo_config.contains(scenario) && grid.algo_config[scenario].contains(algo))
+    out.update(grid.algo_config[scenario][algo]);
   return out;
 }
 
@@ -488,9 +528,14 @@ ReferenceSettings reference_for(const Grid& grid, const std::string& scenario) {
   return r;
 }
 
-nlohmann::json cell_config(const Grid& grid, const std::string& scenario, const AxisPoint& point) {
+nlohmann::json cell_config(const Grid& grid, const std::string& scenario, const AxisPoint& point,
+                           const std::string& algo) {
   json overrides = grid_overrides(grid, scenario);
   for (const auto& [key, value] : point) overrides[key] = value;
+  // No key is in both (parse_algo_config), so this order and `rapid run`'s (algo_config, then the
+  // point's --set) resolve the same config.
+  if (!algo.empty() && grid.algo_config.contains(scenario) && grid.algo_config[scenario].contains(algo))
+    overrides.update(grid.algo_config[scenario][algo]);
   return resolve_config(scenario, grid.profile, overrides, nlohmann::json());
 }
 

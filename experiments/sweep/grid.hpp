@@ -25,6 +25,10 @@
 //                     at those its algorithm reads (algos/registry.hpp: ε only for RAPID-RL, …),
 //                     the reference and dataset jobs at those of keys no algorithm owns. Applied
 //                     after "config" and "scenario_config" (docs/sweeps.md §Axes)
+//   "algo_config"     optional object: scenario → algorithm → overrides for that algorithm's cells
+//                     only, applied last. The reference agent and the dataset builds never see them,
+//                     so a scenario's own keys, an axis key and a key the algorithm does not read are
+//                     refused. `rapid tune` puts its candidates and its winners here (docs/tuning.md)
 //   "max_retries"     optional non-negative integer (default 2): extra attempts per failed job
 //   "jobs"            optional positive integer: worker processes when --jobs is not given
 #pragma once
@@ -60,6 +64,7 @@ struct Grid {
   std::string profile = kDefaultProfile;  // the config files the cells start from (run_config.hpp)
   nlohmann::json config = nlohmann::json::object();
   nlohmann::json scenario_config = nlohmann::json::object();
+  nlohmann::json algo_config = nlohmann::json::object();  // scenario → algorithm → overrides (cells only)
   ReferenceSettings reference;
   std::map<std::string, long> reference_steps;  // "reference"."steps" by scenario (absent: 0)
   std::vector<GridAxis> axes;  // in key order
@@ -84,8 +89,9 @@ Grid load_grid(const std::string& path);
 // The same validation on an already parsed document; `label` names it in messages.
 Grid parse_grid(const nlohmann::json& document, const std::string& label);
 
-// The overrides a cell of `scenario` gets: "config", then "scenario_config"[scenario] on top.
-nlohmann::json grid_overrides(const Grid& grid, const std::string& scenario);
+// The overrides a job of `scenario` gets: "config", then "scenario_config"[scenario] on top, then
+// for a cell of `algo` (empty: the reference and dataset jobs) "algo_config"[scenario][algo].
+nlohmann::json grid_overrides(const Grid& grid, const std::string& scenario, const std::string& algo = "");
 
 // Whether an algorithm of the grid uses prior data: then each scenario has a reference agent and
 // a dataset build.
@@ -95,8 +101,10 @@ bool grid_uses_prior(const Grid& grid);
 ReferenceSettings reference_for(const Grid& grid, const std::string& scenario);
 
 // The resolved config of the grid's cells of `scenario` at `point`: its profile's file, then the
-// overrides, then the point's axis values.
-nlohmann::json cell_config(const Grid& grid, const std::string& scenario, const AxisPoint& point = {});
+// overrides, then the point's axis values, then `algo`'s "algo_config" (none for an empty algo: the
+// config the scenario's reference agent and dataset builds read).
+nlohmann::json cell_config(const Grid& grid, const std::string& scenario, const AxisPoint& point = {},
+                           const std::string& algo = "");
 
 // The points a job of `scenario` runs at: every combination of the values of the axes that vary
 // in that scenario and whose key `reads` accepts, in the grid's order (the last axis fastest).

@@ -136,7 +136,7 @@ class LocalRunner {
       if (const long l = reference_for(folder_.grid, job.scenario).steps; l > 0) return l;
     }
     try {
-      return cell_config(folder_.grid, job.scenario, job.axis).value("steps", 1L);
+      return cell_config(folder_.grid, job.scenario, job.axis, job.algo).value("steps", 1L);
     } catch (const std::exception&) {
       return 1;
     }

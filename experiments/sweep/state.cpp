@@ -42,7 +42,7 @@ std::string expected_cell_hash(const SweepFolder& folder, const SweepJob& cell) 
     if (!fs::is_regular_file(spec.dataset_path))
       throw std::runtime_error("dataset " + cell_dataset_path(cell) + " is missing");
   }
-  spec.config = cell_config(folder.grid, cell.scenario, cell.axis);
+  spec.config = cell_config(folder.grid, cell.scenario, cell.axis, cell.algo);
   return job_config_hash(spec);
 }
 

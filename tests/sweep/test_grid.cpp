@@ -70,6 +70,35 @@ TEST(Grid, ScenarioConfigOverridesConfig) {
   EXPECT_EQ(grid_overrides(g, "pendulum"), (json{{"steps", 500}, {"batch_size", 32}, {"warmup_steps", 0}}));
 }
 
+// "algo_config" configures one algorithm's cells; the reference and dataset jobs (no algorithm)
+// and the other algorithms never see it, and keys that would split cells from their data, their
+// folder or their hash are refused.
+TEST(Grid, AlgoConfigReachesOnlyItsAlgorithmsCells) {
+  json doc = valid_grid();
+  doc["algo_config"] = {{"pendulum", {{"rapid-rl", {{"actor_lr", 0.0003}, {"epsilon", 0.2}}}}}};
+  const Grid g = parse_grid(doc, "g.json");
+  EXPECT_EQ(cell_config(g, "pendulum", {}, "rapid-rl").at("actor_lr"), 0.0003);
+  EXPECT_EQ(cell_config(g, "pendulum", {}, "rapid-rl").at("epsilon"), 0.2);
+  EXPECT_EQ(cell_config(g, "pendulum", {}, "ddpg"), cell_config(parse_grid(valid_grid(), "g.json"), "pendulum", {}, "ddpg"));
+  EXPECT_EQ(cell_config(g, "pendulum"), cell_config(parse_grid(valid_grid(), "g.json"), "pendulum"));  // the reference's
+  EXPECT_EQ(grid_overrides(g, "pendulum", "rapid-rl").at("actor_lr"), 0.0003);
+
+  const auto refused = [](const json& algo_config) {
+    json d = valid_grid();
+    d["algo_config"] = algo_config;
+    return error_of(d);
+  };
+  EXPECT_EQ(refused({{"merge", {{"ddpg", json::object()}}}}), "grid g.json: algo_config.merge: 'merge' is not one of the grid's scenarios");
+  EXPECT_EQ(refused({{"pendulum", {{"rlpd", json::object()}}}}), "grid g.json: algo_config.pendulum.rlpd: 'rlpd' is not one of the grid's algorithms");
+  EXPECT_EQ(refused({{"pendulum", {{"ddpg", {{"epsilon", 0.1}}}}}}),
+            "grid g.json: algo_config.pendulum.ddpg.epsilon: 'ddpg' does not read 'epsilon'");
+  EXPECT_EQ(refused({{"pendulum", {{"ddpg", {{"actor_lr", -1}}}}}}).rfind("grid g.json: algo_config.pendulum.ddpg: ", 0), 0u);
+  json with_axis = valid_grid();
+  with_axis["axes"] = {{"epsilon", {0.1, 0.2}}};
+  with_axis["algo_config"] = {{"pendulum", {{"rapid-rl", {{"epsilon", 0.3}}}}}};
+  EXPECT_EQ(error_of(with_axis), "grid g.json: algo_config.pendulum.rapid-rl.epsilon: 'epsilon' is an axis of the grid");
+}
+
 TEST(Grid, EachMalformedGridNamesItsField) {
   struct Case {
     const char* what;
