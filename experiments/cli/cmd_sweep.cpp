@@ -3,6 +3,7 @@
 // its grid.json updated, and the backend runs the jobs.
 #include <unistd.h>
 
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -56,6 +57,8 @@ struct SweepOptions {
   // The hidden follow-up mode of --decide on Slurm (cli/sweep_decide_slurm.hpp): the positional
   // argument is the sweep folder.
   bool decide_step = false;
+  // Cells chosen by the caller rather than by --only (`rapid tune`).
+  std::optional<Selection> preset;
 };
 
 // "90", "90s", "45m", "2h", "1.5h", "1d" → seconds; throws UsageError naming the option.
@@ -103,6 +106,16 @@ void update_grid_file(const SweepFolder& folder, bool decide, std::ostream& note
     }
   }
   write_file_atomic(path.string(), text);
+}
+
+// What makes a folder a sweep folder: its grid.json, or only the lock a sweep takes before it
+// writes grid.json (a sweep killed in between left it; its content is a pid, or nothing yet).
+std::vector<FolderMarker> sweep_folder_markers() {
+  return {sweep_files::kGrid, FolderMarker(sweep_files::kLock, [](const std::string& path) {
+            std::ifstream in(path);
+            std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+            return text.size() <= 21 && text.find_first_not_of("0123456789\n") == std::string::npos;
+          })};
 }
 
 // How a message names the sweep folder: the option, or where its default came from.
@@ -205,7 +218,7 @@ int submit_to_slurm(const SweepOptions& o, SweepFolder& folder, const Selection&
   } catch (const SlurmError& e) {
     std::cerr << "rapid sweep: warning: cannot check for earlier submissions still queued: " << e.what() << "\n";
   }
-  refuse_foreign_folder(dir, out_option(o, dir), {sweep_files::kGrid}, "a sweep folder", o.force);
+  refuse_foreign_folder(dir, out_option(o, dir), sweep_folder_markers(), "a sweep folder", o.force);
   make_output_folder(dir, out_option(o, dir));
   const auto lock = lock_folder(dir);
   update_grid_file(folder, o.decide, std::cerr);
@@ -260,7 +273,7 @@ int sweep_of(const SweepOptions& o, const Grid& grid) {
   SweepFolder folder = make_sweep_folder(dir, grid);
   LocalSweepOptions options;
   try {
-    options.selection = parse_selection(o.only, folder.grid, folder.graph);
+    options.selection = o.preset ? *o.preset : parse_selection(o.only, folder.grid, folder.graph);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -285,7 +298,7 @@ int sweep_of(const SweepOptions& o, const Grid& grid) {
   options.terminal = ::isatty(STDERR_FILENO) != 0;
   options.progress = &std::cerr;
 
-  refuse_foreign_folder(dir, out_option(o, dir), {sweep_files::kGrid}, "a sweep folder", o.force);
+  refuse_foreign_folder(dir, out_option(o, dir), sweep_folder_markers(), "a sweep folder", o.force);
   make_output_folder(dir, out_option(o, dir));
   const auto lock = lock_folder(dir);
   update_grid_file(folder, o.decide, std::cerr);
@@ -350,6 +363,19 @@ int sweep_grid(const Grid& grid, const std::string& out, const std::string& reus
   o.out_given = true;
   o.reuse_datasets = reuse_from;
   o.jobs = jobs;
+  return sweep_of(o, grid);
+}
+
+int sweep_selection(const Grid& grid, const std::string& out, const Selection& selection, const std::string& reuse_from,
+                    int jobs, const std::string& backend) {
+  SweepOptions o;
+  o.out = out;
+  o.out_given = true;
+  o.reuse_datasets = reuse_from;
+  o.jobs = backend == "slurm" ? 0 : jobs;
+  o.backend = backend;
+  o.no_summary = true;
+  o.preset = selection;
   return sweep_of(o, grid);
 }
 

@@ -194,6 +194,18 @@ TEST(SweepCli, AFolderThatHoldsTheUsersOwnFilesIsNotWrittenInto) {
             std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(mine / "grid.json"));
 
+  // A sweep killed after it took the folder's lock but before it wrote grid.json left only the
+  // lock (a pid, or nothing yet): the folder is the sweep's and the same command resumes it. A
+  // user's own file that happens to be called .lock is not taken for one.
+  const fs::path killed = dir.path() / "killed";
+  fs::create_directories(killed);
+  std::ofstream(killed / ".lock") << "12345\n";
+  EXPECT_EQ(run_rapid("sweep " + grid.string() + " --jobs 1 --no-summary --out " + killed.string()).exit_code, 0);
+  const fs::path other = dir.path() / "other";
+  fs::create_directories(other);
+  std::ofstream(other / ".lock") << "my lock notes";
+  EXPECT_EQ(run_rapid("sweep " + grid.string() + " --jobs 1 --no-summary --out " + other.string()).exit_code, 2);
+
   const fs::path sweep = dir.path() / "sweep";
   ASSERT_EQ(run_rapid("sweep " + grid.string() + " --jobs 1 --no-summary --out " + sweep.string()).exit_code, 0);
   r = run_rapid("summarize " + sweep.string() + " --no-plots --out " + mine.string());
