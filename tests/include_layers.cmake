@@ -3,6 +3,7 @@
 #
 #   experiments/cli  →  experiments/report  →  experiments/sweep  →  experiments/run  →  envs, algos  →  core
 #   experiments/bench (beside report and sweep) → experiments/run; only experiments/cli uses bench
+#   experiments/tune → experiments/report (its formats), experiments/sweep; only experiments/cli uses tune
 #
 # One line "FOLDER: MAY INCLUDE..." per folder. An include of a path under none of these folders (a
 # system header, the generated revision.hpp) is not ours and not checked; a C++ file directly in
@@ -19,7 +20,8 @@ set(rules
   "experiments/sweep: core envs algos experiments/run"
   "experiments/report: core envs algos experiments/run experiments/sweep"
   "experiments/bench: core envs algos experiments/run"
-  "experiments/cli: core envs algos experiments/run experiments/sweep experiments/report experiments/bench")
+  "experiments/tune: core envs algos experiments/run experiments/sweep experiments/report"
+  "experiments/cli: core envs algos experiments/run experiments/sweep experiments/report experiments/bench experiments/tune")
 
 if(NOT ROOT)
   message(FATAL_ERROR "include_layers.cmake: pass -DROOT=<source tree>")

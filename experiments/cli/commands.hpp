@@ -26,12 +26,19 @@ Command add_recheck_command(CLI::App& parent);
 Command add_simulate_decide_command(CLI::App& parent);
 Command add_replay_decide_command(CLI::App& parent);
 Command add_eval_budget_command(CLI::App& parent);
+Command add_tune_command(CLI::App& parent);
 
 // `rapid sweep` of a parsed grid into `out` on local processes (`jobs` 0: one per core), starting
 // from `reuse_from`'s references and datasets where it has them for this grid (empty: none), its
 // reports refreshed at the end. Returns the exit code; throws UsageError as `rapid sweep` does.
 struct Grid;
 int sweep_grid(const Grid& grid, const std::string& out, const std::string& reuse_from, int jobs);
+
+// The same for the cells `selection` picks (with the jobs they depend on), on `backend` (local or
+// slurm: submitted, not waited for), without refreshing the reports: `rapid tune`'s trials.
+struct Selection;
+int sweep_selection(const Grid& grid, const std::string& out, const Selection& selection, const std::string& reuse_from,
+                    int jobs, const std::string& backend);
 
 // `rapid summarize SWEEP_DIR [--out DIR]`, also run by `rapid sweep` when it ends: the reports
 // (with `plots` the figures, with `animations` too the best and worst cells' animations) into

@@ -1,0 +1,256 @@
+#include "experiments/tune/tune.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "algos/registry.hpp"
+#include "core/atomic_file.hpp"
+#include "core/statistics.hpp"
+#include "experiments/report/format.hpp"
+#include "experiments/sweep/cell_record.hpp"
+#include "experiments/sweep/graph.hpp"
+#include "experiments/sweep/state.hpp"
+
+namespace rapid {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// The datasets a search's cells run on: the grid's for a prior algorithm, none for ddpg.
+std::vector<std::string> datasets_of(const Grid& grid, const std::string& algo) {
+  return find_algorithm(algo).uses_prior ? grid.datasets : std::vector<std::string>{""};
+}
+
+std::string cell_key_of(const std::string& scenario, const std::string& dataset, const std::string& algo) {
+  return scenario + "/" + (dataset.empty() ? sweep_files::kNoDataset : dataset) + "/" + algo;
+}
+
+// The seeds of unit u alone.
+std::vector<std::uint64_t> seeds_of_unit(const SearchSpace& space, const Grid& grid, const std::string& algo, int u) {
+  const bool prior = find_algorithm(algo).uses_prior;
+  const std::vector<std::uint64_t> upto = unit_seeds(space, prior, static_cast<int>(grid.datasets.size()), u + 1);
+  const std::size_t per_unit = prior ? 1 : grid.datasets.size();
+  return {upto.end() - static_cast<long>(per_unit), upto.end()};
+}
+
+}  // namespace
+
+fs::path candidate_dir(const fs::path& dir, int k) { return dir / ("c" + std::to_string(k)); }
+
+TunePlan plan_tune(const Grid& grid, const SearchSpace& space) {
+  if (!grid.axes.empty())
+    throw std::invalid_argument("grid " + grid.name + ": axes: rapid tune searches a grid without axes (its candidates vary the keys)");
+  for (std::uint64_t seed : space.seeds)
+    if (std::find(grid.seeds.begin(), grid.seeds.end(), seed) != grid.seeds.end())
+      throw std::invalid_argument("space " + space.name + ": seeds: " + std::to_string(seed) + " is also a seed of grid " +
+                                  grid.name + "; tuning seeds and test seeds must differ");
+  const int datasets = static_cast<int>(grid.datasets.size());
+  for (const std::string& algo : grid.algos) unit_seeds(space, find_algorithm(algo).uses_prior, datasets, max_units(space));
+  for (const SpaceKey& key : space.keys)
+    if (std::none_of(grid.algos.begin(), grid.algos.end(), [&](const std::string& a) {
+          return find_algorithm(a).reads(key.key) &&
+                 (key.algos.empty() || std::find(key.algos.begin(), key.algos.end(), a) != key.algos.end());
+        }))
+      throw std::invalid_argument("space " + space.name + ": keys." + key.key + ": no algorithm of grid " + grid.name + " tunes it");
+  TunePlan plan{grid, space, {}};
+  for (int k = 0; k < space.candidates; ++k) {
+    json doc = grid.normalized;
+    doc["name"] = grid.name + "-tune-c" + std::to_string(k);
+    doc["description"] = "rapid tune: candidate " + std::to_string(k) + " of space " + space.name + " for grid " + grid.name +
+                         (k == 0 ? " (the defaults)" : "") + ", on the tuning seeds, evaluated as the space's trial_config says";
+    doc["seeds"] = space.seeds;
+    json algo_config = grid.algo_config;
+    for (const std::string& scenario : grid.scenarios)
+      for (const std::string& algo : grid.algos) {
+        json overrides = algo_config.contains(scenario) && algo_config[scenario].contains(algo) ? algo_config[scenario][algo] : json::object();
+        overrides.update(trial_overrides(space, scenario));
+        overrides.update(candidate_overrides(space, scenario, algo, k));
+        if (!overrides.empty()) algo_config[scenario][algo] = overrides;
+      }
+    if (!algo_config.empty()) doc["algo_config"] = algo_config;
+    try {
+      plan.candidates.push_back(parse_grid(doc, "of candidate " + std::to_string(k)));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("space " + space.name + ": candidate " + std::to_string(k) + ": " + e.what());
+    }
+  }
+  return plan;
+}
+
+std::vector<TrialScores> replay_tune(const fs::path& dir, const TunePlan& plan) {
+  const SearchSpace& space = plan.space;
+  const int most = max_units(space);
+  std::vector<TrialScores> searches;
+  for (const std::string& scenario : plan.grid.scenarios)
+    for (const std::string& algo : plan.grid.algos) {
+      TrialScores t;
+      t.scenario = scenario;
+      t.algo = algo;
+      t.scores_by_units.assign(static_cast<std::size_t>(space.candidates), std::vector<std::optional<double>>(static_cast<std::size_t>(most + 1)));
+      searches.push_back(std::move(t));
+    }
+  for (int k = 0; k < space.candidates; ++k) {
+    const SweepFolder folder = make_sweep_folder(candidate_dir(dir, k), plan.candidates[static_cast<std::size_t>(k)]);
+    std::map<std::pair<std::string, std::uint64_t>, const SweepJob*> jobs;  // (cell key, seed) → job
+    for (const SweepJob& job : folder.graph.jobs)
+      if (job.kind == JobKind::kCell) jobs[{cell_key_of(job.scenario, job.dataset, job.algo), job.seed}] = &job;
+    for (TrialScores& t : searches) {
+      t.overrides.push_back(candidate_overrides(space, t.scenario, t.algo, k));
+      const std::vector<std::string> datasets = datasets_of(plan.grid, t.algo);
+      std::vector<std::vector<double>> returns(datasets.size());  // per dataset, in unit order, until the first gap
+      std::vector<bool> gap(datasets.size(), false);
+      for (int u = 0; u < most; ++u) {
+        for (std::size_t d = 0; d < datasets.size(); ++d)
+          for (std::uint64_t seed : seeds_of_unit(space, plan.grid, t.algo, u)) {
+            const SweepJob* job = jobs.at({cell_key_of(t.scenario, datasets[d], t.algo), seed});
+            const CellRecord r = read_cell_record(folder, *job);
+            if (!r.done()) {
+              gap[d] = true;
+              continue;
+            }
+            ++t.runs;
+            t.wall_s += r.record->at("timing").value("wall_s", 0.0);
+            if (!gap[d]) returns[d].push_back(r.record->at("final").at("return_mean").get<double>());
+          }
+        const std::size_t needed = seeds_of_unit(space, plan.grid, t.algo, u).size() * static_cast<std::size_t>(u + 1);
+        if (std::all_of(returns.begin(), returns.end(), [&](const std::vector<double>& r) { return r.size() >= needed; })) {
+          double sum = 0;
+          for (const std::vector<double>& r : returns) sum += mean(std::span<const double>(r.data(), needed));
+          t.scores_by_units[static_cast<std::size_t>(k)][static_cast<std::size_t>(u + 1)] = sum / static_cast<double>(returns.size());
+        }
+      }
+    }
+  }
+  for (TrialScores& t : searches)
+    t.state = replay_halving(space, [&](int k, int units) { return t.scores_by_units[static_cast<std::size_t>(k)][static_cast<std::size_t>(units)]; });
+  return searches;
+}
+
+std::vector<TrialJobs> missing_trials(const TunePlan& plan, const std::vector<TrialScores>& searches,
+                                      const std::set<std::string>& algos) {
+  std::map<std::pair<int, std::vector<std::uint64_t>>, Selection> groups;
+  for (const TrialScores& t : searches) {
+    if (t.state.finished() || (!algos.empty() && !algos.count(t.algo))) continue;
+    const int units = plan.space.rungs[t.state.rung];
+    const std::vector<std::uint64_t> seeds =
+        unit_seeds(plan.space, find_algorithm(t.algo).uses_prior, static_cast<int>(plan.grid.datasets.size()), units);
+    for (int k : t.state.alive) {
+      if (t.scores_by_units[static_cast<std::size_t>(k)][static_cast<std::size_t>(units)]) continue;
+      Selection& s = groups[{k, seeds}];
+      s.seeds.insert(seeds.begin(), seeds.end());
+      for (const std::string& d : datasets_of(plan.grid, t.algo)) s.cells.insert(cell_key_of(t.scenario, d, t.algo));
+      s.text = "rapid tune: rung " + std::to_string(t.state.rung + 1) + " (" + std::to_string(units) + " units)";
+    }
+  }
+  std::vector<TrialJobs> out;
+  for (auto& [key, selection] : groups) out.push_back({key.first, selection});
+  return out;  // ordered by candidate: c0, whose datasets the others copy, first
+}
+
+json tune_identity(const TunePlan& plan) {
+  // An algorithm added to the grid later (the Q-filter) adds searches and leaves the others' trials
+  // as they are, so the algorithms and the description are not part of what must match.
+  json grid = plan.grid.normalized;
+  grid.erase("algos");
+  grid.erase("description");
+  return {{"schema", "rapid.tune/1"}, {"grid", grid}, {"space", plan.space.document}};
+}
+
+json tuned_grid(const TunePlan& plan, const std::vector<TrialScores>& searches) {
+  json doc = plan.grid.normalized;
+  doc["name"] = plan.grid.name + "-tuned";
+  doc["description"] = "rapid tune: grid " + plan.grid.name + " with each (scenario, algorithm)'s winner of space " +
+                       plan.space.name + " in algo_config, on the grid's own (test) seeds. " + plan.grid.description;
+  json algo_config = plan.grid.algo_config;
+  for (const TrialScores& t : searches) {
+    const json& winner = t.overrides[static_cast<std::size_t>(t.state.winner)];
+    if (winner.empty()) continue;
+    json overrides = algo_config.contains(t.scenario) && algo_config[t.scenario].contains(t.algo) ? algo_config[t.scenario][t.algo] : json::object();
+    overrides.update(winner);
+    algo_config[t.scenario][t.algo] = overrides;
+  }
+  if (!algo_config.empty()) doc["algo_config"] = algo_config;
+  return doc;
+}
+
+void write_tune_results(const fs::path& dir, const TunePlan& plan, const std::vector<TrialScores>& searches) {
+  const SearchSpace& space = plan.space;
+  json results = json::object();
+  double total_s = 0;
+  int total_runs = 0;
+  std::ostringstream md;
+  md << "# Tuning: " << plan.grid.name << " over space " << space.name << "\n\n"
+     << "`rapid tune` (docs/tuning.md): successive halving over " << space.candidates << " candidates (0: the defaults), rungs of "
+     << space.rungs.front();
+  for (std::size_t i = 1; i < space.rungs.size(); ++i) md << ", " << space.rungs[i];
+  md << " units (a unit: one run per dataset, or " << plan.grid.datasets.size()
+     << " runs of DDPG on as many seeds), tuning seeds " << space.seeds.front() << "-" << space.seeds.back()
+     << ". Score: the mean over the datasets of the mean final return over a candidate's units. "
+     << "Sensitivity: the spread of the first rung's scores over all candidates (one unit each).\n\n"
+     << "| scenario | algorithm | winner | default score | winner score | units | default's rank at rung 1 | "
+        "rung-1 spread (min, max) | rung-1 sd | runs | core-hours |\n|---|---|---|---:|---:|---:|---:|---|---:|---:|---:|\n";
+  for (const TrialScores& t : searches) {
+    const std::size_t last = space.rungs.size() - 1;
+    json trials = json::array();
+    for (int k = 0; k < space.candidates; ++k) {
+      json scores = json::array();
+      for (std::size_t i = 0; i < t.state.scores.size(); ++i)
+        scores.push_back(t.state.scores[i][static_cast<std::size_t>(k)] ? json(*t.state.scores[i][static_cast<std::size_t>(k)]) : json());
+      trials.push_back({{"candidate", k}, {"overrides", t.overrides[static_cast<std::size_t>(k)]}, {"rung_scores", scores}});
+    }
+    std::vector<double> first;
+    for (const auto& s : t.state.scores.front())
+      if (s) first.push_back(*s);
+    const double default_first = *t.state.scores.front()[0];
+    const long rank = 1 + std::count_if(first.begin(), first.end(), [&](double s) { return s > default_first; });
+    const double sd = first.size() > 1 ? std::sqrt(sample_variance(first)) : 0.0;
+    const double winner_score = *t.state.scores[last][static_cast<std::size_t>(t.state.winner)];
+    const std::optional<double> default_last = t.scores_by_units[0][static_cast<std::size_t>(space.rungs[last])];
+    results[t.scenario][t.algo] = {
+        {"winner", t.state.winner},
+        {"overrides", t.overrides[static_cast<std::size_t>(t.state.winner)]},
+        {"winner_score", winner_score},
+        {"default_score_rung1", default_first},
+        {"default_rank_rung1", rank},
+        {"rung1_min", *std::min_element(first.begin(), first.end())},
+        {"rung1_max", *std::max_element(first.begin(), first.end())},
+        {"rung1_sd", sd},
+        {"runs", t.runs},
+        {"wall_s", t.wall_s},
+        {"trials", trials},
+    };
+    total_s += t.wall_s;
+    total_runs += t.runs;
+    md << "| " << t.scenario << " | " << find_algorithm(t.algo).display_name << " | c" << t.state.winner << " "
+       << (t.overrides[static_cast<std::size_t>(t.state.winner)].empty() ? "(defaults)" : t.overrides[static_cast<std::size_t>(t.state.winner)].dump())
+       << " | " << fixed(default_first, 1) << " | " << fixed(winner_score, 1) << " | " << space.rungs[last] << " | " << rank << " of "
+       << first.size() << " | " << fixed(*std::min_element(first.begin(), first.end()), 1) << ", "
+       << fixed(*std::max_element(first.begin(), first.end()), 1) << " | " << fixed(sd, 1) << " | " << t.runs << " | "
+       << fixed(t.wall_s / 3600, 2) << " |\n";
+    (void)default_last;
+  }
+  md << "\nIn all: " << total_runs << " runs, " << fixed(total_s / 3600, 2)
+     << " core-hours of training and evaluation (the records' wall time). The tuned grid, on the grid's own seeds: "
+        "`tuned-grid.json`.\n";
+  const json tuned = {{"schema", "rapid.tuned/1"},
+                      {"grid", plan.grid.name},
+                      {"space", space.document},
+                      {"tuning_seeds", space.seeds},
+                      {"rungs", space.rungs},
+                      {"units_per_search", units_per_search(space)},
+                      {"runs", total_runs},
+                      {"wall_s", total_s},
+                      {"results", results}};
+  write_file_atomic((dir / "tuned.json").string(), tuned.dump(1) + "\n");
+  write_file_atomic((dir / "tuned-grid.json").string(), tuned_grid(plan, searches).dump(2) + "\n");
+  write_file_atomic((dir / "tune.md").string(), md.str());
+}
+
+}  // namespace rapid

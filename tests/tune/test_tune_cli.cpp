@@ -1,0 +1,106 @@
+// `rapid tune` on a tiny pendulum grid with the real binary: it finds the planted better setting
+// (the grid's own actor_lr saturates the actor; every candidate of the space is a sane one), writes
+// tuned.json, tuned-grid.json and tune.md; a tune killed mid-way resumes to the same trials and
+// scores; tuning seeds that are the grid's, and a bad space, are refused with one line and exit 2.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include "tests/datasets/dataset_fixtures.hpp"
+#include "tests/sweep/sweep_test_util.hpp"
+
+namespace rapid {
+namespace {
+
+using namespace sweep_test;
+
+struct TuneFiles {
+  fs::path grid, space;
+};
+
+TuneFiles write_inputs(const fs::path& dir) {
+  nlohmann::json g = pendulum_grid("g", {"ddpg"}, {0, 1}, 3000);
+  g["config"]["actor_lr"] = 0.5;  // planted: the defaults saturate the actor
+  const nlohmann::json space = {
+      {"name", "pendulum-space"},
+      {"seeds", {50, 51, 52, 53}},
+      {"candidates", 4},
+      {"sampler_seed", 3},
+      {"rungs", {1, 2}},
+      {"trial_config", {{"eval_every", 1000000}, {"eval_episodes", 1}, {"final_eval_episodes", 3}}},
+      {"keys", {{"actor_lr", {{"log_uniform", {3e-4, 3e-3}}}}}}};
+  const TuneFiles f{dir / "g.json", dir / "space.json"};
+  write_json(f.grid, g);
+  write_json(f.space, space);
+  return f;
+}
+
+TEST(TuneCli, FindsThePlantedSettingAndResumesAfterAKill) {
+  testing::ScratchDir dir;
+  const TuneFiles in = write_inputs(dir.path());
+  const fs::path out = dir.path() / "tune";
+  const Result r = run_rapid("tune " + in.grid.string() + " --space " + in.space.string() + " --jobs 2 --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json tuned = read_json(out / "tuned.json");
+  const nlohmann::json& search = tuned["results"]["pendulum"]["ddpg"];
+  EXPECT_NE(search["winner"], 0) << search.dump();
+  const double lr = search["overrides"]["actor_lr"].get<double>();
+  EXPECT_GE(lr, 3e-4);
+  EXPECT_LE(lr, 3e-3);
+  EXPECT_GT(search["winner_score"].get<double>(), search["default_score_rung1"].get<double>());
+  EXPECT_EQ(tuned["runs"], 4 + 2);  // 4 candidates × 1 unit, the better 2 × 1 more
+  // The trials evaluated once at the end, with the space's episodes.
+  const nlohmann::json record = read_json(out / "c1/jobs/pendulum/none/ddpg/seed50/record.json");
+  EXPECT_EQ(record["config"]["final_eval_episodes"], 3);
+  const nlohmann::json grid = read_json(out / "tuned-grid.json");
+  EXPECT_EQ(grid["seeds"], nlohmann::json({0, 1}));  // the test seeds
+  EXPECT_EQ(grid["algo_config"]["pendulum"]["ddpg"]["actor_lr"], lr);
+  EXPECT_FALSE(grid["algo_config"]["pendulum"]["ddpg"].contains("final_eval_episodes"));  // not the trials' evaluation
+  EXPECT_TRUE(fs::exists(out / "tune.md"));
+
+  // Killed after candidate 0's first trial, then run again: the same trials and scores.
+  const fs::path again = dir.path() / "again";
+  const pid_t pid = spawn_rapid("tune " + in.grid.string() + " --space " + in.space.string() + " --jobs 1 --out " + again.string(),
+                                dir.path() / "again.log");
+  ASSERT_TRUE(wait_until([&] { return fs::exists(again / "c0/jobs/pendulum/none/ddpg/seed50/record.json"); }, 300));
+  ::kill(pid, SIGKILL);
+  wait_exit(pid);
+  ASSERT_TRUE(wait_until([&] { return !process_running_in(again); }, 120));
+  EXPECT_FALSE(fs::exists(again / "tuned.json"));
+  const Result resumed = run_rapid("tune " + in.grid.string() + " --space " + in.space.string() + " --jobs 2 --out " + again.string());
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  nlohmann::json a = read_json(again / "tuned.json"), b = tuned;
+  for (nlohmann::json* t : {&a, &b}) {
+    (*t).erase("wall_s");
+    (*t)["results"]["pendulum"]["ddpg"].erase("wall_s");
+  }
+  EXPECT_EQ(a, b);
+}
+
+TEST(TuneCli, RefusesOverlappingSeedsAndBadSpacesWritingNothing) {
+  testing::ScratchDir dir;
+  const TuneFiles in = write_inputs(dir.path());
+  nlohmann::json space = read_json(in.space);
+  space["seeds"] = {1, 50, 51, 52};
+  write_json(in.space, space);
+  const fs::path out = dir.path() / "tune";
+  const Result overlap = run_rapid("tune " + in.grid.string() + " --space " + in.space.string() + " --out " + out.string());
+  EXPECT_EQ(overlap.exit_code, 2);
+  EXPECT_NE(overlap.output.find("seeds: 1 is also a seed of grid g; tuning seeds and test seeds must differ"), std::string::npos)
+      << overlap.output;
+  space["seeds"] = {50, 51};
+  space["rungs"] = {1, 3};
+  write_json(in.space, space);
+  const Result few = run_rapid("tune " + in.grid.string() + " --space " + in.space.string() + " --out " + out.string());
+  EXPECT_EQ(few.exit_code, 2);
+  EXPECT_NE(few.output.find("3 units need 3 seeds for ddpg"), std::string::npos) << few.output;
+  space["seeds"] = {50, 51, 52};
+  space["keys"]["actor_lr"] = {{"log_uniform", {-1, 1e-3}}};
+  write_json(in.space, space);
+  const Result bad = run_rapid("tune " + in.grid.string() + " --space " + in.space.string() + " --out " + out.string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.output.find("keys.actor_lr.log_uniform: a log-uniform range must be positive"), std::string::npos) << bad.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace rapid
