@@ -296,6 +296,9 @@ ScenarioDescriptor read_descriptor(const std::string& path) {
   if (networks.empty()) Reader::fail("networks", "must name at least one network");
   for (const auto& [variant, files] : networks.items()) {
     const std::string where = "networks." + variant;
+    // A variant's name is a config value: it reaches folder names (a grid axis) and every table.
+    if (!is_safe_name(variant))
+      Reader::fail(where, "a network's name may use only letters, digits, '.', '_' and '-' (it names folders and table cells)");
     if (!files.is_object()) Reader::fail(where, "must be an object with net and routes");
     r.only(files, where, {"net", "routes"});
     d.networks[variant] = {r.file(files, "net", where + ".net"), r.file(files, "routes", where + ".routes")};
@@ -372,6 +375,8 @@ ScenarioDescriptor read_descriptor(const std::string& path) {
   const json& rewards = r.object(doc, "rewards", "rewards", {}, false);
   for (const auto& [name, terms] : rewards.items()) {
     const std::string where = "rewards." + name;
+    if (!is_safe_name(name))
+      Reader::fail(where, "a reward variant's name may use only letters, digits, '.', '_' and '-' (it names folders and table cells)");
     const auto& builtin = reward_variants();
     if (std::find(builtin.begin(), builtin.end(), name) != builtin.end())
       Reader::fail(where, "'" + name + "' is a built-in reward variant; give yours another name");

@@ -218,6 +218,14 @@ TEST_F(ScenarioFile, AWrongDescriptorIsRefusedNamingTheFieldBeforeAnythingIsWrit
        "display_name: may use only letters, digits, spaces"},
       {"a display name that is HTML", [](nlohmann::json& d, const fs::path&) { d["display_name"] = "<script>x</script> | y"; },
        "display_name: may use only letters, digits, spaces"},
+      // A network's or a reward variant's name is a config value: a grid axis over it names
+      // folders, and it is a cell of table.csv and table.md (a comma or a '|' would split one).
+      {"a network named with a comma and a bar",
+       [](nlohmann::json& d, const fs::path&) { d["networks"]["a,b|c"] = d["networks"]["default"]; },
+       "networks.a,b|c: a network's name may use only letters, digits"},
+      {"a reward variant named with a quote",
+       [](nlohmann::json& d, const fs::path&) { d["rewards"]["\"=HYPERLINK(x)"] = {{"speed", 1.0}}; },
+       ": a reward variant's name may use only letters, digits"},
       // A 50 kB attribute once overflowed the stack of the attribute scan (SIGSEGV, issue 46).
       {"a route of 10,000 edges beside a missing one",
        [](nlohmann::json& d, const fs::path& file) {

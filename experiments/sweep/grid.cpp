@@ -400,7 +400,7 @@ std::map<std::string, std::string> parse_scenario_files(const GridChecker& check
   for (const auto& [name, path] : files.items()) {
     const std::string at = "scenario_files." + name;
     if (name.empty() || name.size() > kMaxGridNameLength ||
-        name.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-") != std::string::npos ||
+        !is_safe_name(name) ||
         is_scenario_file(name))
       check.fail(at, "a scenario's name is 1-100 characters of [A-Za-z0-9._-], not ending in .json");
     if (is_builtin_scenario(name)) check.fail(at, "'" + name + "' is a built-in scenario");

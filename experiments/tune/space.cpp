@@ -135,8 +135,7 @@ SearchSpace parse_space(const json& doc, const std::string& label) {
     if (!doc.contains(required)) check.fail(required, "missing");
   SearchSpace s;
   s.document = doc;
-  if (!doc["name"].is_string() || doc["name"].get<std::string>().empty() ||
-      doc["name"].get<std::string>().find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._-") != std::string::npos)
+  if (!doc["name"].is_string() || !is_safe_name(doc["name"].get<std::string>()))
     check.fail("name", "expected a name of [A-Za-z0-9._-], got " + json_excerpt(doc["name"]));
   s.name = doc["name"].get<std::string>();
   if (doc.contains("description")) {
