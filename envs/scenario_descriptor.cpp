@@ -123,6 +123,8 @@ class Reader {
     const bool regular = fs::is_regular_file(path, ec);
     if (ec && ec != std::errc::no_such_file_or_directory)
       fail(where, path.string() + " cannot be read: " + ec.message());
+    if (!regular && fs::exists(fs::symlink_status(path, ec)))
+      fail(where, path.string() + " is not a regular file (a FIFO, device or folder would not be read as one)");
     if (!regular) fail(where, "no such file " + path.string());
     return path.string();
   }
@@ -176,10 +178,20 @@ std::vector<std::string> start_tags(const std::string& xml, const std::string& e
   return tags;
 }
 
+// A file the descriptor names, read whole (bounded, regular files only): a file that cannot be read
+// is a wrong descriptor, one line naming the field (exit 2), not a failed run.
+std::string read_named_file(const std::string& path, const std::string& where) {
+  try {
+    return read_file(path);
+  } catch (const std::runtime_error& e) {
+    Reader::fail(where, e.what());
+  }
+}
+
 // The ids of the network's normal edges and their lanes. A network with junction-internal lanes
 // (edges ':…') is refused: the env needs every vehicle on one of the road's edges.
 std::map<std::string, int> network_edges(const std::string& net_file, const std::string& where) {
-  const std::string xml = read_file(net_file);
+  const std::string xml = read_named_file(net_file, where);
   if (xml.find("function=\"internal\"") != std::string::npos)
     Reader::fail(where, net_file + " has junction-internal lanes: build it with netconvert --no-internal-links true");
   std::map<std::string, int> edges;
@@ -395,7 +407,7 @@ ScenarioDescriptor read_descriptor(const std::string& path) {
   // The network-independent checks first; then the files: the road's edges, the ego's route.
   // Each routes file is read once, here; its text also serves the vehicle-type check below.
   std::vector<std::string> vtype_texts;
-  for (const std::string& f : d.additional_files) vtype_texts.push_back(read_file(f));
+  for (const std::string& f : d.additional_files) vtype_texts.push_back(read_named_file(f, "additional_files"));
   for (const auto& [variant, files] : d.networks) {
     const auto edges = network_edges(files.net, "networks." + variant + ".net");
     for (const std::string& e : d.road)
@@ -412,7 +424,7 @@ ScenarioDescriptor read_descriptor(const std::string& path) {
       if (f.kind == FeatureSpec::Kind::kDistanceToLaneEnd && f.lane >= edges.at(f.edge))
         Reader::fail(where + ".lane", "edge '" + f.edge + "' has " + std::to_string(edges.at(f.edge)) + " lanes");
     }
-    const std::string& routes_xml = vtype_texts.emplace_back(read_file(files.routes));
+    const std::string& routes_xml = vtype_texts.emplace_back(read_named_file(files.routes, "networks." + variant + ".routes"));
     const auto routes = routes_of(routes_xml);
     const auto route = routes.find(d.ego.route);
     if (route == routes.end()) Reader::fail("ego.route", "route '" + printable(d.ego.route) + "' is not in " + files.routes);

@@ -2,6 +2,7 @@
 // in the test's folder, runs and trains from its descriptor alone; a wrong descriptor is refused
 // with one line naming the field, before SUMO starts and before anything is written.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -226,6 +227,21 @@ TEST_F(ScenarioFile, AWrongDescriptorIsRefusedNamingTheFieldBeforeAnythingIsWrit
       {"a reward variant named with a quote",
        [](nlohmann::json& d, const fs::path&) { d["rewards"]["\"=HYPERLINK(x)"] = {{"speed", 1.0}}; },
        ": a reward variant's name may use only letters, digits"},
+      // Read whole, a 5 GB (sparse) network file once ended in std::bad_alloc (issue 46).
+      {"a network file of 5 GB",
+       [](nlohmann::json& d, const fs::path& file) {
+         const fs::path huge = file.parent_path() / "huge.net.xml";
+         std::ofstream(huge).close();
+         fs::resize_file(huge, std::uintmax_t{5} << 30);  // sparse: no disk is used
+         d["networks"]["default"]["net"] = "huge.net.xml";
+       },
+       "networks.default.net: cannot read "},
+      {"a routes file that is a FIFO",
+       [](nlohmann::json& d, const fs::path& file) {
+         ::mkfifo((file.parent_path() / "fifo.rou.xml").c_str(), 0600);
+         d["networks"]["default"]["routes"] = "fifo.rou.xml";
+       },
+       "fifo.rou.xml is not a regular file"},
       // A 50 kB attribute once overflowed the stack of the attribute scan (SIGSEGV, issue 46).
       {"a route of 10,000 edges beside a missing one",
        [](nlohmann::json& d, const fs::path& file) {
