@@ -63,6 +63,12 @@ std::unique_ptr<Env> make_env(const std::string& name);
 // A driving scenario with the given settings (throws std::invalid_argument naming a bad setting,
 // or for the pendulum, which has none).
 std::unique_ptr<Env> make_env(const std::string& name, const ScenarioSettings& settings);
+// For a scenario file: starts it in SUMO with `settings`, resets and takes one decision, so that a
+// file SUMO cannot run (a network that is no SUMO net, a route the ego cannot drive, a step length
+// SUMO refuses) is refused before a command writes anything. Throws std::invalid_argument("scenario
+// file F does not run in SUMO: <SUMO's first line>"); SUMO's own messages are kept off stderr.
+// Built-in scenarios and the pendulum are not probed (their files ship with the harness and are tested).
+void check_scenario_runs(const std::string& name, const ScenarioSettings& settings);
 // lane-drop, cut-in, merge and scenario files (a path, or a name a grid registered): the scenarios
 // that take ScenarioSettings.
 bool is_driving_scenario(const std::string& name);

@@ -1,5 +1,9 @@
 // The name → environment table behind `--scenario`.
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 
 #include "core/printable.hpp"
@@ -44,6 +48,36 @@ std::unique_ptr<Env> make_env(const std::string& name, const ScenarioSettings& s
   for (const auto& n : env_names()) known += (known.empty() ? "" : ", ") + n;
   throw std::invalid_argument("unknown scenario '" + printable(name) + "'; expected one of " + known +
                               " or a scenario file (.json)");
+}
+
+void check_scenario_runs(const std::string& name, const ScenarioSettings& settings) {
+  if (!is_driving_scenario(name) || is_builtin_scenario(name)) return;
+  // SUMO prints its errors itself before libsumo throws them: keep stderr for our one line.
+  std::fflush(stderr);
+  const int saved = ::dup(STDERR_FILENO);
+  if (const int null = ::open("/dev/null", O_WRONLY); null >= 0) {
+    ::dup2(null, STDERR_FILENO);
+    ::close(null);
+  }
+  std::string problem;
+  try {
+    const std::unique_ptr<Env> env = make_env(name, settings);
+    Vec obs(env->obs_dim());
+    env->reset(0, obs);
+    const Vec action = Vec::Zero(env->act_dim());
+    env->step(action, obs);
+  } catch (const std::exception& e) {
+    problem = e.what();
+  }
+  std::fflush(stderr);
+  if (saved >= 0) {
+    ::dup2(saved, STDERR_FILENO);
+    ::close(saved);
+  }
+  if (problem.empty()) return;
+  problem = problem.substr(0, problem.find('\n'));
+  if (problem.size() > 300) problem = problem.substr(0, 300) + "…";
+  throw std::invalid_argument("scenario file " + scenario_descriptor(name)->file + " does not run in SUMO: " + problem);
 }
 
 }  // namespace rapid

@@ -337,7 +337,8 @@ ScenarioDescriptor read_descriptor(const std::string& path) {
   if (ego.contains("depart_lane") && !(ego.at("depart_lane").is_string() && ego.at("depart_lane") == "random"))
     d.ego.depart_lane = r.integer(ego, "depart_lane", "ego.depart_lane", 0, 0, 100);
 
-  d.step_length = r.number(doc, "step_length", "step_length", 0.1, 0.0, 10.0, true);
+  // SUMO counts time in milliseconds: a shorter step would be passed to it as 0 (1e-300 once was).
+  d.step_length = r.number(doc, "step_length", "step_length", 0.1, 0.001, 10.0);
   const json& traffic = r.object(doc, "traffic", "traffic", {"warmup_jitter"}, false);
   d.traffic_warmup_jitter = r.integer(traffic, "warmup_jitter", "traffic.warmup_jitter", 50, 0, 100000);
 

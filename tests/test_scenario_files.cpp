@@ -242,6 +242,21 @@ TEST_F(ScenarioFile, AWrongDescriptorIsRefusedNamingTheFieldBeforeAnythingIsWrit
          d["networks"]["default"]["routes"] = "fifo.rou.xml";
        },
        "fifo.rou.xml is not a regular file"},
+      // Files that pass the descriptor's checks but not SUMO's loading: SUMO's error becomes the
+      // one line, before anything is written (issue 46: exit 1 and a failed record).
+      {"a network with the right tags that is no SUMO net",
+       [](nlohmann::json& d, const fs::path& file) {
+         write(file.parent_path() / "fake.net.xml",
+               R"(<net><edge id="road" from="a" to="b"><lane id="road_0" index="0" speed="30" length="500" shape="0,0 500,0"/>)"
+               R"(<lane id="road_1" index="1" speed="30" length="500" shape="0,3 500,3"/></edge></net>)");
+         d["networks"]["default"]["net"] = "fake.net.xml";
+       },
+       "does not run in SUMO: "},
+      {"the descriptor itself as an additional file",
+       [](nlohmann::json& d, const fs::path& file) { d["additional_files"] = {file.filename().string()}; },
+       "does not run in SUMO: "},
+      {"a step SUMO cannot count", [](nlohmann::json& d, const fs::path&) { d["step_length"] = 1e-300; },
+       "step_length: must be from 0.001 to 10"},
       // A 50 kB attribute once overflowed the stack of the attribute scan (SIGSEGV, issue 46).
       {"a route of 10,000 edges beside a missing one",
        [](nlohmann::json& d, const fs::path& file) {

@@ -80,7 +80,7 @@ int run_command(const RunOptions& o) {
   try {
     for (const auto& s : o.sets) parse_set_option(s, sets);
     spec.config = resolve_cli_config(o.scenario, o.profile, o.grid, sets, o.algo);
-    check_config_fits(o.algo, spec.config, o.scenario);
+    check_scenario_runs(o.scenario, check_config_fits(o.algo, spec.config, o.scenario).scenario);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }

@@ -93,6 +93,7 @@ std::unique_ptr<Env> make_watched_env(const std::string& scenario, const WatchOp
   }
   const ScenarioSettings settings = rollout_settings(scenario, w);
   try {
+    check_scenario_runs(scenario, settings);
     return w.gui ? make_gui_env(scenario, settings, w.gui_options) : make_env(scenario, settings);
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string(w.settings_from.empty() ? "--scenario: " : "--settings-from: ") + e.what());
