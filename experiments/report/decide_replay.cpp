@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/json_input.hpp"
+#include "core/statistics.hpp"
 #include "experiments/report/adaptive_seeds.hpp"
 #include "experiments/report/decisions.hpp"
 #include "experiments/report/format.hpp"
@@ -50,10 +51,8 @@ std::optional<Summary> cells_at(const Summary& full, const std::vector<std::uint
       if (r == c.seeds.end()) return std::nullopt;
       kept.push_back(*r);
     }
-    c.seeds = std::move(kept);
-    c.finals.clear();
-    for (const SeedResult& r : c.seeds) c.finals.push_back(*r.final_return);
-    c.n_ok = c.n_expected = n;
+    c.replace_seeds(std::move(kept));
+    c.n_expected = n;
   }
   return s;
 }
@@ -70,13 +69,11 @@ LookReplay replay_folder_looks(const Summary& full, const std::vector<std::uint6
       Summary s = full;
       const std::uint64_t bound = next + static_cast<std::uint64_t>(look * settings.block);
       for (CellSummary& c : s.cells) {
-        std::erase_if(c.seeds, [&](const SeedResult& r) {
+        std::vector<SeedResult> kept = c.seeds;
+        std::erase_if(kept, [&](const SeedResult& r) {
           return std::find(initial.begin(), initial.end(), r.seed) == initial.end() && r.seed >= bound;
         });
-        c.finals.clear();
-        for (const SeedResult& r : c.seeds)
-          if (r.final_return) c.finals.push_back(*r.final_return);
-        c.n_ok = static_cast<int>(c.finals.size());
+        c.replace_seeds(std::move(kept));
       }
       for (const auto& [cell, n] : seeds_of)
         for (const CellSummary& c : s.cells)
@@ -101,6 +98,7 @@ Summary summary_of_reports(const ReportFolder& folder) {
     c.algo = j.value("algo", "");
     const std::string key = cell_key(j, folder.sweep.grid);
     const auto curves = folder.seed_curves.find(key);
+    std::vector<SeedResult> seeds;
     for (const nlohmann::json& seed : j.value("seeds", nlohmann::json::array())) {
       SeedResult r;
       r.seed = seed.value("seed", std::uint64_t{0});
@@ -108,17 +106,12 @@ Summary summary_of_reports(const ReportFolder& folder) {
       if (r.status == "ok" && seed.contains("final") && seed["final"].is_number()) r.final_return = seed["final"].get<double>();
       if (curves != folder.seed_curves.end())
         if (const auto curve = curves->second.find(r.seed); curve != curves->second.end()) r.eval = curve->second;
-      if (r.final_return) c.finals.push_back(*r.final_return);
       ++c.statuses[r.status];
-      c.seeds.push_back(std::move(r));
+      seeds.push_back(std::move(r));
     }
-    c.n_ok = static_cast<int>(c.finals.size());
+    c.replace_seeds(std::move(seeds));
     c.n_expected = static_cast<int>(c.seeds.size());
-    if (!c.finals.empty()) {
-      double sum = 0.0;
-      for (double f : c.finals) sum += f;
-      c.mean = sum / c.finals.size();
-    }
+    if (!c.finals.empty()) c.mean = mean(c.finals);
     s.cells.push_back(std::move(c));
   }
   build_table_rows(s);

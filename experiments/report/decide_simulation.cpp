@@ -19,10 +19,8 @@ Summary with_seeds(const Summary& observed, const std::map<std::string, std::vec
     const auto d = draws.find(c.key());
     if (d == draws.end()) continue;
     const int n = n_of.at(c.key());
-    c.seeds.assign(d->second.begin(), d->second.begin() + n);
-    c.finals.clear();
-    for (const SeedResult& r : c.seeds) c.finals.push_back(*r.final_return);
-    c.n_ok = c.n_expected = n;
+    c.replace_seeds({d->second.begin(), d->second.begin() + n});
+    c.n_expected = n;
   }
   return s;
 }

@@ -12,6 +12,14 @@ std::string CellSummary::key() const {
   return scenario + "/" + (dataset.empty() ? "none" : dataset) + "/" + algo + (axis.empty() ? "" : "/" + point_label(axis));
 }
 
+void CellSummary::replace_seeds(std::vector<SeedResult> kept) {
+  seeds = std::move(kept);
+  finals.clear();
+  for (const SeedResult& r : seeds)
+    if (r.final_return) finals.push_back(*r.final_return);
+  n_ok = static_cast<int>(finals.size());
+}
+
 std::string comparison_key(const Comparison& c) {
   return c.key.empty() ? c.where + " | " + c.metric + " | " + c.x + " vs " + c.y : c.key;
 }

@@ -68,6 +68,9 @@ struct CellSummary {
   MeanCurve q_grad_prior, q_grad_online, bc_grad_prior, bc_grad_online;
   std::optional<double> eval_auc;       // area under the mean eval curve / step range
   std::string key() const;              // "merge/initial/rapid-rl", "merge/none/ddpg", "merge/initial/rapid-rl/epsilon=0.3"
+  // The cell with `kept` as its seeds (a replay's or a simulation's subset): finals and n_ok follow
+  // from them; n_expected and the statistics are the caller's to set.
+  void replace_seeds(std::vector<SeedResult> kept);
 };
 
 // One row of Table I: a scenario × dataset and the cell index of each algorithm column.
