@@ -1,5 +1,5 @@
 // `rapid rollout`: run a fixed policy in a scenario and report each episode's return, length
-// and collision (README, "The `rapid` command"); --record, --gui and --settings-from watch it
+// and collision (docs/usage.md, "The `rapid` command"); --record, --gui and --settings-from watch it
 // (rollout_watch.hpp).
 #include <filesystem>
 #include <iostream>

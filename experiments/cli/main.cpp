@@ -1,4 +1,4 @@
-// `rapid`: the harness's one command line. See docs/design.md §Command line and the README.
+// `rapid`: the harness's one command line. See docs/design.md §Command line and docs/usage.md.
 #include <iostream>
 #include <string>
 #include <vector>
