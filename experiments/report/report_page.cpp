@@ -149,11 +149,11 @@ std::string report_page_html(const ReportFolder& folder) {
   std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
                      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>RAPID-RL sweep " +
                      html_escape(name) + "</title>\n<style>\n" + report_page_css() + "</style>\n</head>\n<body>\n";
-  html += "<header><h1>Sweep <code>" + html_escape(name) + "</code></h1>\n<nav><a href=\"#provenance\">Provenance</a> "
+  html += "<header><h1>Sweep <code>" + html_escape(name) + "</code></h1>\n<nav><a href=\"#answer\">The answer</a> <a href=\"#provenance\">Provenance</a> "
           "<a href=\"#table-i\">Table I</a> <a href=\"#poi\">P(improvement)</a> <a href=\"#claims\">Claims</a> "
           "<a href=\"#figures\">Figures</a> <a href=\"#cells\">Cells and seeds</a></nav></header>\n<main>\n";
   html += "<pre id=\"selftest\" hidden></pre>\n";
-  html += provenance_section(folder) + tables_section(folder) + claims_section(folder) + figures_section(folder) +
+  html += answer_section(folder) + provenance_section(folder) + tables_section(folder) + claims_section(folder) + figures_section(folder) +
           cells_section(folder);
   html += "</main>\n<script>\n" + report_page_script() + "</script>\n</body>\n</html>\n";
   return html;

@@ -18,6 +18,9 @@ table.sortable thead th[aria-sort="descending"]::after { content: " \25BC"; colo
 td.best { font-weight: bold; background: #e3f6fb; }
 td.cell a { color: inherit; text-decoration: none; border-bottom: 1px dotted #888; }
 table.facts th { text-align: left; background: #f9f9f9; white-space: nowrap; }
+#answer { background: #fafcff; border: 1px solid #dde6f0; border-radius: 6px; padding: 4px 14px; margin-top: 16px; }
+#answer h2 { margin-top: 8px; }
+ul.answer-best { margin: 4px 0 12px; padding-left: 20px; }
 .verdict { font-weight: bold; white-space: nowrap; }
 .verdict-pass, .verdict-confirmed { color: #176c1a; }
 .verdict-fail, .verdict-refuted { color: #b01c1c; }

@@ -8,13 +8,13 @@
 
 namespace rapid::report_page {
 
-namespace {
-
 std::string verdict_cell(const std::string& verdict) {
   std::string css;
   for (const char c : verdict) css += (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : (c == '/' ? '-' : c);
   return "<td class=\"verdict verdict-" + html_escape(css) + "\">" + html_escape(verdict) + "</td>";
 }
+
+namespace {
 
 std::string statement_of(const nlohmann::json& claims, const std::string& id) {
   for (const nlohmann::json& c : claims)

@@ -10,12 +10,15 @@
 
 namespace rapid::report_page {
 
+std::string answer_section(const ReportFolder& folder);    // the verdicts first, each with its reason
 std::string provenance_section(const ReportFolder& folder);
 std::string tables_section(const ReportFolder& folder);   // Table I, P(improvement), IQM
 std::string claims_section(const ReportFolder& folder);   // decided and point-mean verdicts
 std::string figures_section(const ReportFolder& folder);  // Figures 2, 3(a), 3(b), sensitivity, animations
 std::string cells_section(const ReportFolder& folder);    // the drill-down per cell
 
+// A verdict (CONFIRMED, PASS, …) as a table cell coloured by the page's CSS.
+std::string verdict_cell(const std::string& verdict);
 // A JSON number as a double; nullopt for null (summary.json's "cannot exist") or anything else.
 std::optional<double> number(const nlohmann::json& j);
 // The decimals of Table I (table_decimals of the largest |mean|), so every section agrees with it.

@@ -190,6 +190,46 @@ TEST(ReportPageInput, AHostileStringInAnyFieldIsShownAsTextNeverRun) {
   std::cout << fields << " kinds of field made hostile; " << refused << " refused as the wrong type, the rest shown as text\n";
 }
 
+// The page answers first: before the provenance, each decided claim with its verdict, its reason
+// and, where undecided, how many comparisons are open and the fewest seeds one of them needs; the
+// highest mean per row; RAPID-RL against the baselines the paper does not run. A summary without
+// decisions says its PASS/FAIL are point means, not decisions.
+TEST(ReportPageAnswer, TheVerdictsComeFirstWithWhatWouldDecideThem) {
+  ReportFolder folder = read_report_folder(fs::path(RAPID_SOURCE_DIR) / "results" / "extension-flow",
+                                           fs::path(RAPID_SOURCE_DIR) / "results" / "extension-flow");
+  std::string page = report_page_html(folder);
+  const std::size_t answer = page.find("<section id=\"answer\">"), provenance = page.find("<section id=\"provenance\">");
+  ASSERT_NE(answer, std::string::npos);
+  ASSERT_LT(answer, provenance);
+  std::string section = page.substr(answer, provenance - answer);
+  const nlohmann::json& d = folder.summary["decisions"];
+  for (const nlohmann::json& claim : d["claims"]) {
+    EXPECT_TRUE(has(section, "<td>" + claim["id"].get<std::string>() + "</td>")) << claim["id"];
+    EXPECT_TRUE(has(section, claim["reason"].get<std::string>())) << claim["id"];
+    if (claim["verdict"] != "UNDECIDED") continue;
+    int open = 0;
+    long nearest = 1L << 40;
+    for (const nlohmann::json& i : claim["comparisons"]) {
+      const nlohmann::json& c = d["comparisons"][i.get<std::size_t>()];
+      if (c["outcome"] != "undecided") continue;
+      ++open;
+      nearest = std::min(nearest, c["seeds_needed"].get<long>());
+    }
+    EXPECT_TRUE(has(section, std::to_string(open) + " comparison" + (open == 1 ? "" : "s") + " undecided; the nearest needs about " +
+                                 std::to_string(nearest) + " seeds"))
+        << claim["id"];
+  }
+  for (const nlohmann::json& row : folder.summary["table"])
+    for (const nlohmann::json& a : folder.summary["algorithms"])
+      if (a["name"] == row["best"]) EXPECT_TRUE(has(section, "<b>" + a["label"].get<std::string>() + "</b>"));
+  EXPECT_TRUE(has(section, "against RLPD (SAC), ")) << section;
+
+  folder.summary.erase("decisions");
+  page = report_page_html(folder);
+  section = page.substr(page.find("<section id=\"answer\">"));
+  EXPECT_TRUE(has(section.substr(0, section.find("</section>")), "so PASS and FAIL here are not decisions"));
+}
+
 // A field of the wrong type is bad input: one line naming the file, exit 2, no page.
 TEST(ReportPageInput, AWrongTypedFieldIsBadInput) {
   testing::ScratchDir scratch;
