@@ -21,12 +21,6 @@ std::string label_of(const json& summary, const std::string& algo) {
   return algo_display_name(algo);  // a summary written before it listed its algorithms
 }
 
-std::string statement_of(const json& summary, const std::string& id) {
-  for (const json& c : summary.value("claims", json::array()))
-    if (c.value("id", "") == id) return c.value("statement", "");
-  return "";
-}
-
 // "7 comparisons undecided; the nearest needs about 51 seeds per algorithm", from the claim's
 // comparisons in the decisions' list; "—" for a decided claim.
 std::string to_decide(const json& decisions, const json& claim) {
@@ -56,7 +50,7 @@ std::string claims_table(const json& summary) {
         "REFUTED: it fails even if every undecided comparison went for it.</p>\n<table class=\"answer\" id=\"answer-claims\">"
         "<thead><tr><th>Claim</th><th>The paper says</th><th>Verdict</th><th>Why</th><th>To decide it</th></tr></thead><tbody>\n";
     for (const json& c : d.value("claims", json::array()))
-      html += "<tr><td>" + html_escape(c.value("id", "")) + "</td><td>" + html_escape(statement_of(summary, c.value("id", ""))) +
+      html += "<tr><td>" + html_escape(c.value("id", "")) + "</td><td>" + html_escape(statement_of(summary.value("claims", json::array()), c.value("id", ""))) +
               "</td>" + verdict_cell(c.value("verdict", "")) + "<td>" + html_escape(c.value("reason", "")) + "</td><td>" +
               html_escape(to_decide(d, c)) + "</td></tr>\n";
     return html + "</tbody></table>\n";

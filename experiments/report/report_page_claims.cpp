@@ -14,13 +14,13 @@ std::string verdict_cell(const std::string& verdict) {
   return "<td class=\"verdict verdict-" + html_escape(css) + "\">" + html_escape(verdict) + "</td>";
 }
 
-namespace {
-
 std::string statement_of(const nlohmann::json& claims, const std::string& id) {
   for (const nlohmann::json& c : claims)
     if (c.value("id", "") == id) return c.value("statement", "");
   return "";
 }
+
+namespace {
 
 std::string p_text(const nlohmann::json& p) {
   const std::optional<double> x = number(p);

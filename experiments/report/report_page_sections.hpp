@@ -19,6 +19,8 @@ std::string cells_section(const ReportFolder& folder);    // the drill-down per 
 
 // A verdict (CONFIRMED, PASS, …) as a table cell coloured by the page's CSS.
 std::string verdict_cell(const std::string& verdict);
+// The statement of claim `id` in summary.json's "claims" array; empty when it has none.
+std::string statement_of(const nlohmann::json& claims, const std::string& id);
 // A JSON number as a double; nullopt for null (summary.json's "cannot exist") or anything else.
 std::optional<double> number(const nlohmann::json& j);
 // The decimals of Table I (table_decimals of the largest |mean|), so every section agrees with it.
