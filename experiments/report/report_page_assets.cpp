@@ -32,6 +32,13 @@ details.cell-detail { border: 1px solid #ddd; border-radius: 4px; margin: 4px 0;
 details.cell-detail[open] { background: #fcfcfc; }
 details summary { cursor: pointer; }
 svg.seed-curves { font: 10px sans-serif; }
+svg.interval-plot, svg.profile { font: 10px sans-serif; }
+svg.interval-plot rect.frame, svg.profile rect.frame { fill: none; stroke: #999; }
+svg.interval-plot line.interval { stroke-width: 2; }
+svg.interval-plot line.reference { stroke: #777; stroke-dasharray: 4 3; }
+svg.profile polyline { fill: none; stroke-width: 1.6; }
+svg.profile text.title { font-weight: bold; }
+figure.profiles svg { margin-right: 8px; }
 svg.seed-curves rect.frame { fill: none; stroke: #999; }
 svg.seed-curves polyline { fill: none; stroke-width: 1.4; }
 .swatch { display: inline-block; width: 10px; height: 10px; margin-right: 6px; border-radius: 2px; }
@@ -145,6 +152,16 @@ std::string report_page_script() {
       var lines = svg.querySelectorAll('polyline');
       var drawn = lines.length > 0 && Array.prototype.every.call(lines, function (l) { return l.getTotalLength() > 0 || l.points.length === 1; });
       if (!drawn) { result.curves.empty.push(svg.closest('details').id); pass = false; }
+    });
+    // rliable's figures: their points and profile lines are drawn (non-empty geometry).
+    result.rliable = {
+      poi: document.querySelectorAll('svg.poi-plot circle.point').length,
+      iqm: document.querySelectorAll('svg.iqm-plot circle.point').length,
+      profiles: document.querySelectorAll('svg.profile').length,
+      empty: []
+    };
+    document.querySelectorAll('svg.profile polyline').forEach(function (l) {
+      if (!(l.getTotalLength() > 0)) { result.rliable.empty.push(l.textContent); pass = false; }
     });
     function finish() {
       if (problems.length) pass = false;

@@ -8,6 +8,7 @@
 #include "experiments/report/format.hpp"
 #include "experiments/report/html_text.hpp"
 #include "experiments/report/report_page_sections.hpp"
+#include "experiments/report/summary_svg.hpp"
 
 namespace rapid::report_page {
 
@@ -68,6 +69,70 @@ std::string table_i(const ReportFolder& folder) {
     html += "</tr>\n";
   }
   return html + "</tbody></table>\n";
+}
+
+// An algorithm's colour in the figures, from summary.json's "algorithms" (grey if it has none).
+std::string colour_of(const nlohmann::json& summary, const std::string& algo) {
+  for (const nlohmann::json& a : summary.value("algorithms", nlohmann::json::array()))
+    if (a.value("name", "") == algo && a.contains("colour") && a["colour"].is_string()) return css_colour(a["colour"]);
+  return "#7f7f7f";
+}
+
+std::optional<double> bound(const nlohmann::json& ci, std::size_t i) {
+  return ci.is_array() && ci.size() == 2 ? number(ci[i]) : std::nullopt;
+}
+
+// The probability of improvement of every comparison as points with their intervals (rliable's
+// figure), beside the table.
+std::string poi_plot(const ReportFolder& folder) {
+  std::vector<IntervalRow> rows;
+  for (const nlohmann::json& e : folder.summary.value("probability_of_improvement", nlohmann::json::array())) {
+    const nlohmann::json ci = e.value("ci", nlohmann::json());
+    rows.push_back({scenario_display_name(e.value("scenario", "")) + " / " + dataset_display_name(e.value("dataset", "")) +
+                        (e.contains("point") ? " (" + e.value("point", "") + ")" : "") + ": " +
+                        algo_display_name(e.value("algo", "")) + " > " + algo_display_name(e.value("baseline", "")),
+                    number(e.value("p", nlohmann::json())), bound(ci, 0), bound(ci, 1),
+                    colour_of(folder.summary, e.value("baseline", ""))});
+  }
+  const std::string svg = interval_plot_svg(rows, "poi-plot", "P(X > Y)", 0.5, std::pair{0.0, 1.0});
+  return svg.empty() ? "" : "<figure>" + svg + "<figcaption>P(X &gt; Y) per comparison with its 95% interval; right of the "
+                                                 "dashed line X tends to be better (coloured by Y).</figcaption></figure>\n";
+}
+
+// The IQM of every algorithm with its interval (rliable's aggregate figure).
+std::string iqm_plot(const ReportFolder& folder) {
+  std::vector<IntervalRow> rows;
+  for (const nlohmann::json& e : folder.summary.value("aggregate_iqm", nlohmann::json::array())) {
+    const nlohmann::json ci = e.value("ci", nlohmann::json());
+    rows.push_back({algo_display_name(e.value("algo", "")), number(e.value("iqm", nlohmann::json())), bound(ci, 0), bound(ci, 1),
+                    colour_of(folder.summary, e.value("algo", ""))});
+  }
+  const std::string svg = interval_plot_svg(rows, "iqm-plot", "IQM of the final return");
+  return svg.empty() ? "" : "<figure>" + svg + "<figcaption>IQM over all of an algorithm's ok runs with its 95% "
+                                                 "stratified-bootstrap interval.</figcaption></figure>\n";
+}
+
+// Per scenario, each algorithm's share of ok runs above each final return (rliable's performance
+// profile, per scenario because returns are not normalised across them).
+std::string profiles(const ReportFolder& folder) {
+  std::string html;
+  for (const std::string& scenario : folder.summary["grid"].value("scenarios", std::vector<std::string>{})) {
+    std::vector<ProfileSeries> series;
+    for (const std::string& algo : table_columns(folder.summary)) {
+      ProfileSeries s{algo_display_name(algo), colour_of(folder.summary, algo), {}};
+      for (const nlohmann::json& cell : folder.summary.value("cells", nlohmann::json::array())) {
+        if (cell.value("scenario", "") != scenario || cell.value("algo", "") != algo) continue;
+        for (const nlohmann::json& seed : cell.value("seeds", nlohmann::json::array()))
+          if (seed.value("status", "") == "ok")
+            if (const std::optional<double> f = number(seed.value("final", nlohmann::json()))) s.finals.push_back(*f);
+      }
+      series.push_back(std::move(s));
+    }
+    html += performance_profile_svg(series, scenario_display_name(scenario));
+  }
+  return html.empty() ? "" : "<h3>Performance profiles</h3>\n<p>Per scenario, the share of an algorithm's ok runs (every "
+                             "dataset and seed) whose final return is above τ: a line above another is better at every "
+                             "level.</p>\n<figure class=\"profiles\">" + html + "</figure>\n";
 }
 
 std::string poi_table(const ReportFolder& folder) {
@@ -161,7 +226,7 @@ std::string tables_section(const ReportFolder& folder) {
          "Mann–Whitney U / (n<sub>X</sub>·n<sub>Y</sub>), ties count half; 95% interval from a stratified bootstrap. "
          "RAPID-RL against each of the paper's baselines, and each variant the paper does not have against "
          "RAPID-RL.</p>\n" +
-         poi_table(folder) + iqm_table(folder) + run_cost_table(folder) + "</section>\n";
+         poi_table(folder) + poi_plot(folder) + iqm_table(folder) + iqm_plot(folder) + profiles(folder) + run_cost_table(folder) + "</section>\n";
 }
 
 }  // namespace rapid::report_page

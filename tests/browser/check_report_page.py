@@ -195,6 +195,21 @@ def check_dom(dom, summary, figures, problems):
     drawn = sum(1 for c in summary["cells"] if c["n_ok"] > 0)
     if result["curves"]["count"] != drawn:
         problems.append(f"{result['curves']['count']} seed charts, {drawn} cells have ok seeds")
+    # rliable's figures, counted against summary.json: a point per comparison and per algorithm
+    # with a value, a profile per scenario with an ok run.
+    def numeric(x):
+        return isinstance(x, (int, float)) and not isinstance(x, bool)
+    expected = {
+        "poi": sum(1 for e in summary.get("probability_of_improvement", []) if numeric(e.get("p"))),
+        "iqm": sum(1 for e in summary.get("aggregate_iqm", []) if numeric(e.get("iqm"))),
+        "profiles": len({c["scenario"] for c in summary["cells"]
+                         if any(s.get("status") == "ok" and numeric(s.get("final")) for s in c["seeds"])}),
+    }
+    for key, count in expected.items():
+        if result["rliable"][key] != count:
+            problems.append(f"{result['rliable'][key]} {key} drawn, summary.json gives {count}")
+    if result["rliable"]["empty"]:
+        problems.append(f"empty profile lines: {result['rliable']['empty'][:5]}")
     if not any(t["id"] == "table-i-cells" for t in result["tables"]):
         problems.append("the selftest did not sort Table I")
 
