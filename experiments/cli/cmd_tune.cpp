@@ -119,13 +119,16 @@ int tune_command(const TuneOptions& o) {
     }
     for (const TrialJobs& trials : missing) {
       const fs::path folder = candidate_dir(dir, trials.candidate);
-      // Candidate 0 starts from --reuse-datasets; the others copy its references and datasets.
-      const std::string from = trials.candidate == 0 ? o.reuse_datasets : candidate_dir(dir, 0).string();
+      // Candidate 0 starts from --reuse-datasets; the others copy its references and datasets once
+      // it is a sweep folder (on Slurm its first rung may not have run yet).
+      const fs::path first = candidate_dir(dir, 0);
+      const std::string from = trials.candidate == 0                      ? o.reuse_datasets
+                               : fs::exists(first / sweep_files::kGrid) ? first.string()
+                                                                         : "";
       std::cerr << "rapid tune: candidate " << trials.candidate << ": " << trials.selection.cells.size() << " cells × "
                 << trials.selection.seeds.size() << " seeds (" << trials.selection.text << ")\n";
       const int code = sweep_selection(plan.candidates[static_cast<std::size_t>(trials.candidate)], folder.string(),
-                                       trials.selection, trials.candidate == 0 || fs::exists(candidate_dir(dir, 0) / "grid.json") ? from : "",
-                                       o.jobs, o.backend);
+                                       trials.selection, from, o.jobs, o.backend);
       if (code == kExitInterrupted) return code;
       if (code != kExitOk) {
         std::cerr << "rapid tune: trials of candidate " << trials.candidate << " failed (rapid status " << folder.string()

@@ -15,12 +15,6 @@ namespace {
 
 using nlohmann::json;
 
-std::string label_of(const json& summary, const std::string& algo) {
-  for (const json& a : summary.value("algorithms", json::array()))
-    if (a.value("name", "") == algo) return a.value("label", algo);
-  return algo_display_name(algo);  // a summary written before it listed its algorithms
-}
-
 // "7 comparisons undecided; the nearest needs about 51 seeds per algorithm", from the claim's
 // comparisons in the decisions' list; "—" for a decided claim.
 std::string to_decide(const json& decisions, const json& claim) {
@@ -73,7 +67,7 @@ std::string best_per_row(const json& summary) {
   for (const json& row : summary.value("table", json::array())) {
     const std::string scenario = row.value("scenario", "");
     if (!lines.count(scenario)) scenarios.push_back(scenario);
-    const std::string best = row.contains("best") && row["best"].is_string() ? label_of(summary, row["best"]) : "—";
+    const std::string best = row.contains("best") && row["best"].is_string() ? algo_display_name(row["best"]) : "—";
     std::string& line = lines[scenario];
     line += (line.empty() ? "" : " · ") + html_escape(row.value("dataset", "")) +
             (row.contains("axis") ? " (" + html_escape(axis_text(row["axis"])) + ")" : "") + ": <b>" + html_escape(best) + "</b>";

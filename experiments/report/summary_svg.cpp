@@ -75,11 +75,10 @@ std::string interval_plot_svg(const std::vector<IntervalRow>& rows, const std::s
 
 std::string performance_profile_svg(const std::vector<ProfileSeries>& series, const std::string& title) {
   double x0 = INFINITY, x1 = -INFINITY;
-  int drawn = 0;
   for (const ProfileSeries& s : series)
     for (double v : s.finals)
-      if (std::isfinite(v)) x0 = std::min(x0, v), x1 = std::max(x1, v), drawn = 1;
-  if (!drawn) return "";
+      if (std::isfinite(v)) x0 = std::min(x0, v), x1 = std::max(x1, v);
+  if (!std::isfinite(x0)) return "";  // no run anywhere
   if (!(x1 > x0)) x0 -= 1, x1 += 1;
   constexpr double kWidth = 420, kHeight = 220, kLeft = 44, kRight = 110, kTop = 22, kBottom = 34;
   const double w = kWidth - kLeft - kRight, h = kHeight - kTop - kBottom;

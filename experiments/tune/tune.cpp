@@ -212,7 +212,6 @@ void write_tune_results(const fs::path& dir, const TunePlan& plan, const std::ve
     const long rank = 1 + std::count_if(first.begin(), first.end(), [&](double s) { return s > default_first; });
     const double sd = first.size() > 1 ? std::sqrt(sample_variance(first)) : 0.0;
     const double winner_score = *t.state.scores[last][static_cast<std::size_t>(t.state.winner)];
-    const std::optional<double> default_last = t.scores_by_units[0][static_cast<std::size_t>(space.rungs[last])];
     results[t.scenario][t.algo] = {
         {"winner", t.state.winner},
         {"overrides", t.overrides[static_cast<std::size_t>(t.state.winner)]},
@@ -234,7 +233,6 @@ void write_tune_results(const fs::path& dir, const TunePlan& plan, const std::ve
        << first.size() << " | " << fixed(*std::min_element(first.begin(), first.end()), 1) << ", "
        << fixed(*std::max_element(first.begin(), first.end()), 1) << " | " << fixed(sd, 1) << " | " << t.runs << " | "
        << fixed(t.wall_s / 3600, 2) << " |\n";
-    (void)default_last;
   }
   md << "\nIn all: " << total_runs << " runs, " << fixed(total_s / 3600, 2)
      << " core-hours of training and evaluation (the records' wall time). The tuned grid, on the grid's own seeds: "
