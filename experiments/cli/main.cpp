@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
       rapid::add_simulate_decide_command(app),
       rapid::add_replay_decide_command(app),
       rapid::add_eval_budget_command(app),
+      rapid::add_paper_command(app),
       rapid::add_tune_command(app),
   };
 

@@ -40,6 +40,10 @@ svg.profile polyline { fill: none; stroke-width: 1.6; }
 svg.profile text.title { font-weight: bold; }
 figure.profiles svg { margin-right: 8px; }
 svg.seed-curves rect.frame { fill: none; stroke: #999; }
+svg.seed-dots { font: 10px sans-serif; display: block; }
+svg.seed-dots line.axis { stroke: #999; }
+svg.seed-dots line.spread { stroke: #444; stroke-width: 4; stroke-opacity: 0.35; }
+svg.seed-dots line.mean { stroke: #222; stroke-width: 1.5; }
 svg.seed-curves polyline { fill: none; stroke-width: 1.4; }
 .swatch { display: inline-block; width: 10px; height: 10px; margin-right: 6px; border-radius: 2px; }
 .status-ok { color: #176c1a; }
@@ -158,6 +162,7 @@ std::string report_page_script() {
       poi: document.querySelectorAll('svg.poi-plot circle.point').length,
       iqm: document.querySelectorAll('svg.iqm-plot circle.point').length,
       profiles: document.querySelectorAll('svg.profile').length,
+      seed_dots: document.querySelectorAll('svg.seed-dots circle.seed').length,
       empty: []
     };
     document.querySelectorAll('svg.profile polyline').forEach(function (l) {

@@ -1,12 +1,14 @@
 // report.html's drill-down: per cell of summary.json, its statistics, every seed's evaluation
 // curve (runs.csv) and a table of its seeds: status, final return, error, and links to the
 // record and to the animation drawn from the run, where those files are.
+#include <algorithm>
 #include <map>
 
 #include "experiments/report/format.hpp"
 #include "experiments/report/html_text.hpp"
 #include "experiments/report/report_page_sections.hpp"
 #include "experiments/report/seed_curves_svg.hpp"
+#include "experiments/report/summary_svg.hpp"
 
 namespace rapid::report_page {
 
@@ -55,7 +57,24 @@ std::string seed_row(const nlohmann::json& seed, const std::string& colour, cons
   return html + "</td><td>" + (error.is_string() ? html_escape(error.get<std::string>()) : "") + "</td></tr>\n";
 }
 
-std::string cell_details(const ReportFolder& folder, const nlohmann::json& cell, std::size_t index, int decimals) {
+// Every ok seed's final return as a dot beside the cell's mean ± std, coloured as its row below.
+std::string seed_dots(const nlohmann::json& cell, const std::map<std::uint64_t, std::string>& colours,
+                      std::pair<double, double> range) {
+  std::vector<SeedDot> dots;
+  for (const nlohmann::json& seed : cell.value("seeds", nlohmann::json::array()))
+    if (seed.value("status", "") == "ok")
+      if (const std::optional<double> f = number(seed.value("final", nlohmann::json()))) {
+        const std::uint64_t s = seed.value("seed", std::uint64_t{0});
+        dots.push_back({"seed " + std::to_string(s), *f, colours.at(s)});
+      }
+  const std::string svg = seed_dots_svg(dots, number(cell.value("mean", nlohmann::json())),
+                                        number(cell.value("std", nlohmann::json())), range);
+  return svg.empty() ? "" : "<figure class=\"dots-figure\">" + svg + "<figcaption>Final return of every ok seed (dots) "
+                            "beside the mean (tick) ± std (bar), on the scenario's range.</figcaption></figure>\n";
+}
+
+std::string cell_details(const ReportFolder& folder, const nlohmann::json& cell, std::size_t index, int decimals,
+                         std::pair<double, double> range) {
   const std::string key = cell_key(cell, folder.sweep.grid);
   const auto files = folder.seed_files.find(key);
   const auto curves = folder.seed_curves.find(key);
@@ -70,7 +89,8 @@ std::string cell_details(const ReportFolder& folder, const nlohmann::json& cell,
                      (point.empty() ? "" : " (" + html_escape(point) + ")") + ": " +
                      html_escape(table_cell_text(number(cell["mean"]), number(cell["std"]), cell.value("n_ok", 0),
                                                  cell.value("n_expected", 0), decimals, " ± ", "—")) +
-                     "</summary>\n<div class=\"drill\">\n" + statistics_line(cell, decimals);
+                     "</summary>\n<div class=\"drill\">\n" + statistics_line(cell, decimals) +
+                     seed_dots(cell, colours, range);
   const std::string svg = curves == folder.seed_curves.end() ? "" : seed_curves_svg(curves->second, colours);
   html += svg.empty() ? "<p class=\"note\">No seed of this cell has an evaluation curve in runs.csv.</p>\n"
                       : "<figure class=\"seeds-figure\">" + svg + "<figcaption>Evaluation return of every ok seed against "
@@ -93,7 +113,15 @@ std::string cells_section(const ReportFolder& folder) {
   const int decimals = table_decimals_of(folder.summary);
   std::string html = "<section id=\"cells\"><h2>Cells and seeds</h2>\n" + records_note(folder);
   const nlohmann::json& cells = folder.summary["cells"];
-  for (std::size_t i = 0; i < cells.size(); ++i) html += cell_details(folder, cells[i], i, decimals);
+  std::map<std::string, std::pair<double, double>> range;  // scenario → lowest and highest ok final
+  for (const nlohmann::json& cell : cells)
+    for (const nlohmann::json& seed : cell.value("seeds", nlohmann::json::array()))
+      if (const std::optional<double> f = number(seed.value("final", nlohmann::json())); f && seed.value("status", "") == "ok") {
+        const auto [it, added] = range.try_emplace(cell.value("scenario", ""), *f, *f);
+        it->second = {std::min(it->second.first, *f), std::max(it->second.second, *f)};
+      }
+  for (std::size_t i = 0; i < cells.size(); ++i)
+    html += cell_details(folder, cells[i], i, decimals, range[cells[i].value("scenario", "")]);
   return html + "</section>\n";
 }
 

@@ -7,6 +7,7 @@
 #include "algos/registry.hpp"
 #include "experiments/report/format.hpp"
 #include "experiments/report/html_text.hpp"
+#include "experiments/report/paper_ranking.hpp"
 #include "experiments/report/report_page_sections.hpp"
 #include "experiments/report/summary_svg.hpp"
 
@@ -214,6 +215,32 @@ std::string run_cost_table(const ReportFolder& folder) {
   return html + "</tbody></table>\n";
 }
 
+// The paper's order of the methods beside ours, row by row (paper_ranking.hpp); nothing when the
+// grid has no row of the paper's Table I.
+std::string paper_beside(const ReportFolder& folder) {
+  const std::optional<PaperAgreement> agreement = paper_agreement(our_rows(folder.summary));
+  if (!agreement) return "";
+  const auto order = [](const std::vector<RankedMethod>& methods) {
+    std::string html;
+    for (const RankedMethod& m : methods)
+      html += (html.empty() ? "" : " &gt; ") + html_escape(algo_display_name(m.algo)) + " " + fixed(m.mean, 1);
+    return html;
+  };
+  std::string html = "<section id=\"paper-beside\"><h2>The paper beside us</h2>\n<p>" + html_escape(paper_agreement_preamble()) +
+                     "</p>\n<table class=\"sortable numbers\" id=\"paper-beside-table\">" +
+                     header({"Scenario", "Dataset", "The paper's order", "Our order", "τ", "95% interval", "Same best"}) +
+                     "<tbody>\n";
+  std::size_t index = 0;
+  for (const RowAgreement& r : agreement->rows) {
+    html += "<tr data-order=\"" + std::to_string(index++) + "\"><td>" + html_escape(scenario_display_name(r.scenario)) +
+            "</td><td>" + html_escape(dataset_display_name(r.dataset)) + "</td><td>" + order(r.paper) + "</td><td>" +
+            order(r.ours) + "</td><td" + sort_value(r.tau) + ">" + fixed(r.tau, 2) + "</td><td>" +
+            (r.tau_ci ? "[" + fixed(r.tau_ci->lo, 2) + ", " + fixed(r.tau_ci->hi, 2) + "]" : "—") + "</td><td>" +
+            (r.same_best ? "yes" : "no") + "</td></tr>\n";
+  }
+  return html + "</tbody></table>\n<p>" + html_escape(paper_agreement_conclusion(*agreement)) + "</p></section>\n";
+}
+
 }  // namespace
 
 std::string tables_section(const ReportFolder& folder) {
@@ -221,8 +248,8 @@ std::string tables_section(const ReportFolder& folder) {
          "run's final return; <code>(n=ok/expected)</code> when seeds are short, — without an ok seed. The best mean of a "
          "row is <strong>bold</strong>. DDPG takes no dataset: its cell repeats in every dataset row. Click a column "
          "header to sort by it (again to reverse), a cell for its seeds.</p>\n" +
-         table_i(folder) +
-         "</section>\n<section id=\"poi\"><h2>Probability of improvement</h2>\n<p>P(X &gt; Y) per row over the ok seeds: "
+         table_i(folder) + "</section>\n" + paper_beside(folder) +
+         "<section id=\"poi\"><h2>Probability of improvement</h2>\n<p>P(X &gt; Y) per row over the ok seeds: "
          "Mann–Whitney U / (n<sub>X</sub>·n<sub>Y</sub>), ties count half; 95% interval from a stratified bootstrap. "
          "RAPID-RL against each of the paper's baselines, and each variant the paper does not have against "
          "RAPID-RL.</p>\n" +

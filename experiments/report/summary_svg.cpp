@@ -115,4 +115,35 @@ std::string performance_profile_svg(const std::vector<ProfileSeries>& series, co
   return svg + "</svg>";
 }
 
+std::string seed_dots_svg(const std::vector<SeedDot>& dots, std::optional<double> mean, std::optional<double> std,
+                          std::pair<double, double> range) {
+  if (dots.empty()) return "";
+  auto [x0, x1] = range;
+  if (!(x1 > x0)) x0 -= 1, x1 += 1;
+  constexpr double kWidth = 640, kLeft = 16, kRight = 16, kTop = 6, kRows = 3, kRowStep = 7, kHeight = 58;
+  const double w = kWidth - kLeft - kRight, middle = kTop + kRowStep * kRows / 2;
+  const auto x = [&](double v) { return kLeft + w * (std::clamp(v, x0, x1) - x0) / (x1 - x0); };
+  std::string svg = "<svg class=\"seed-dots\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " + at(kWidth) + " " +
+                    at(kHeight) + "\" width=\"" + at(kWidth) + "\" height=\"" + at(kHeight) +
+                    "\" role=\"img\" aria-label=\"every seed's final return beside the mean and std\">";
+  const double axis = kTop + kRowStep * kRows + 8;
+  svg += "<line class=\"axis\" x1=\"" + at(kLeft) + "\" y1=\"" + at(axis) + "\" x2=\"" + at(kLeft + w) + "\" y2=\"" + at(axis) + "\"/>";
+  if (mean && std::isfinite(*mean)) {
+    if (std && std::isfinite(*std))
+      svg += "<line class=\"spread\" x1=\"" + at(x(*mean - *std)) + "\" y1=\"" + at(axis) + "\" x2=\"" +
+             at(x(*mean + *std)) + "\" y2=\"" + at(axis) + "\"><title>mean ± std</title></line>";
+    svg += "<line class=\"mean\" x1=\"" + at(x(*mean)) + "\" y1=\"" + at(kTop) + "\" x2=\"" + at(x(*mean)) + "\" y2=\"" +
+           at(axis + 4) + "\"><title>mean " + short_number(mean) + "</title></line>";
+  }
+  // Three rows of dots, seed by seed, so that equal returns stay visible.
+  for (std::size_t i = 0; i < dots.size(); ++i) {
+    const double y = middle + kRowStep * (static_cast<double>(i % 3) - 1.0);
+    svg += "<circle class=\"seed\" cx=\"" + at(x(dots[i].value)) + "\" cy=\"" + at(y) + "\" r=\"3\" fill=\"" +
+           html_escape(dots[i].colour) + "\"><title>" + html_escape(dots[i].label) + ": " + short_number(dots[i].value) +
+           "</title></circle>";
+  }
+  svg += text(kLeft, axis + 14, "start", short_number(x0)) + text(kLeft + w, axis + 14, "end", short_number(x1));
+  return svg + "</svg>";
+}
+
 }  // namespace rapid

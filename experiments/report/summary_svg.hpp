@@ -34,6 +34,18 @@ struct ProfileSeries {
 // is above τ, against τ over the series' range. Series without runs are left out; empty for none.
 std::string performance_profile_svg(const std::vector<ProfileSeries>& series, const std::string& title);
 
+struct SeedDot {
+  std::string label;   // "seed 3"; escaped here
+  double value = 0.0;  // its final return
+  std::string colour;
+};
+
+// An <svg class="seed-dots"> strip: every seed's final return as a dot (class "seed", coloured as
+// the cell's seed table) beside a bar of mean ± std with a tick at the mean, on the x range
+// `range` (the scenario's, so strips of one scenario line up). Empty for no dots.
+std::string seed_dots_svg(const std::vector<SeedDot>& dots, std::optional<double> mean, std::optional<double> std,
+                          std::pair<double, double> range);
+
 // A matplotlib colour name as summary.json carries it ("tab:red") in CSS hex; other names as given.
 std::string css_colour(const std::string& matplotlib_name);
 

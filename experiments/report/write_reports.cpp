@@ -7,6 +7,7 @@
 #include "experiments/report/claims_markdown.hpp"
 #include "experiments/report/decisions.hpp"
 #include "experiments/report/interruption.hpp"
+#include "experiments/report/paper_ranking.hpp"
 #include "experiments/report/plot.hpp"
 #include "experiments/report/tables.hpp"
 #include "experiments/sweep/attempt.hpp"  // signal_name
@@ -32,11 +33,12 @@ std::string report_file_in_the_way(const fs::path& out_dir) {
 }
 
 void write_reports(const Summary& summary, const fs::path& out_dir, std::ostream& out) {
-  write_file_atomic((out_dir / "table.md").string(), table_markdown(summary));
+  const nlohmann::json summary_json = summary_to_json(summary);
+  write_file_atomic((out_dir / "table.md").string(), table_markdown(summary) + paper_agreement_markdown(summary_json));
   write_file_atomic((out_dir / "table.tex").string(), table_latex(summary));
   write_file_atomic((out_dir / "table.csv").string(), table_csv(summary));
   write_file_atomic((out_dir / "runs.csv").string(), runs_csv(summary));
-  write_file_atomic((out_dir / "summary.json").string(), summary_to_json(summary).dump(1) + "\n");
+  write_file_atomic((out_dir / "summary.json").string(), summary_json.dump(1) + "\n");
   write_file_atomic((out_dir / "claims.md").string(), claims_markdown(summary));
 
   int ok = 0, expected = 0;

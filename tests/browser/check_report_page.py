@@ -196,7 +196,7 @@ def check_dom(dom, summary, figures, problems):
     if result["curves"]["count"] != drawn:
         problems.append(f"{result['curves']['count']} seed charts, {drawn} cells have ok seeds")
     # rliable's figures, counted against summary.json: a point per comparison and per algorithm
-    # with a value, a profile per scenario with an ok run.
+    # with a value, a profile per scenario with an ok run; and the drill-downs' seed dots.
     def numeric(x):
         return isinstance(x, (int, float)) and not isinstance(x, bool)
     expected = {
@@ -204,6 +204,9 @@ def check_dom(dom, summary, figures, problems):
         "iqm": sum(1 for e in summary.get("aggregate_iqm", []) if numeric(e.get("iqm"))),
         "profiles": len({c["scenario"] for c in summary["cells"]
                          if any(s.get("status") == "ok" and numeric(s.get("final")) for s in c["seeds"])}),
+        # a dot per ok seed with a final return, in its cell's drill-down
+        "seed_dots": sum(1 for c in summary["cells"] for s in c["seeds"]
+                         if s.get("status") == "ok" and numeric(s.get("final"))),
     }
     for key, count in expected.items():
         if result["rliable"][key] != count:

@@ -223,5 +223,29 @@ TEST_F(ReportCliTest, DiffFailsOnAWrongSchema) {
   EXPECT_NE(out.text.find("schema mismatch"), std::string::npos) << out.text;
 }
 
+// `rapid paper`: the paper beside a reports folder, the same text as the end of its table.md (the
+// committed paper-flow folder's, whose records are not in git), and a clear line for a folder that
+// has nothing to set beside the paper or no summary.
+TEST_F(ReportCliTest, PaperSetsTheFolderBesideThePapersTableI) {
+  const std::filesystem::path paper_flow = std::filesystem::path(RAPID_SOURCE_DIR) / "results" / "paper-flow";
+  const test::CliOutput r = rapid_cli("paper " + paper_flow.string(), true);
+  ASSERT_EQ(r.exit_code, 0) << r.text;
+  EXPECT_NE(r.text.find("## The paper beside us"), std::string::npos) << r.text;
+  EXPECT_NE(r.text.find("| Lane-drop | Initial | RAPID-RL 939.7 > RLPD 765.4"), std::string::npos) << r.text;
+  const std::string table = report_test::read_text(paper_flow / "table.md");
+  ASSERT_GE(table.size(), r.text.size());
+  EXPECT_EQ(table.substr(table.size() - r.text.size()), r.text) << "table.md ends with the same section";
+
+  ASSERT_EQ(rapid_cli("summarize " + sweep.string() + " --no-plots").exit_code, 0);
+  const test::CliOutput pendulum = rapid_cli("paper " + sweep.string(), true);
+  EXPECT_EQ(pendulum.exit_code, 0) << pendulum.text;
+  EXPECT_NE(pendulum.text.find("nothing to set beside the paper"), std::string::npos) << pendulum.text;
+  EXPECT_EQ(report_test::read_text(sweep / "table.md").find("The paper beside us"), std::string::npos);
+
+  const test::CliOutput empty = rapid_cli("paper " + scratch.path().string(), true);
+  EXPECT_EQ(empty.exit_code, 2);
+  EXPECT_NE(empty.text.find("REPORTS_DIR: " + (scratch.path() / "summary.json").string()), std::string::npos) << empty.text;
+}
+
 }  // namespace
 }  // namespace rapid

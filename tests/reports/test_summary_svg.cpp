@@ -50,5 +50,20 @@ TEST(SummarySvg, AProfileStepsDownOnceAtEachRun) {
   EXPECT_TRUE(performance_profile_svg({{"none", "#000", {}}}, "x").empty());
 }
 
+TEST(SummarySvg, SeedDotsDrawOneDotPerSeedOnTheGivenRange) {
+  const std::string svg = seed_dots_svg({{"seed 0", 10.0, "#111"}, {"seed 1", 30.0, "#222"}, {"seed <2>", 30.0, "#333"}},
+                                        std::optional<double>(70.0 / 3.0), std::optional<double>(9.43), {0.0, 40.0});
+  EXPECT_EQ(count(svg, "<circle class=\"seed\""), 3u);
+  EXPECT_EQ(count(svg, "<line class=\"spread\""), 1u);
+  EXPECT_EQ(count(svg, "<line class=\"mean\""), 1u);
+  EXPECT_NE(svg.find("seed &lt;2&gt;"), std::string::npos) << "labels are text";
+  // 10 on [0, 40]: 16 + 0.25 · 608 (the strip's left and width).
+  EXPECT_NE(svg.find("cx=\"168.0\""), std::string::npos) << svg;
+  // Equal returns of neighbouring seeds sit on different rows, so both stay visible.
+  EXPECT_NE(svg.find("cx=\"472.0\" cy=\"16.5\""), std::string::npos) << svg;
+  EXPECT_NE(svg.find("cx=\"472.0\" cy=\"23.5\""), std::string::npos) << svg;
+  EXPECT_TRUE(seed_dots_svg({}, std::nullopt, std::nullopt, {0.0, 1.0}).empty());
+}
+
 }  // namespace
 }  // namespace rapid
