@@ -48,7 +48,7 @@ ActorCritic::ActorCritic(int obs_dim, int act_dim, const AgentConfig& config, st
   single_obs_.resize(obs_dim, 1);
 }
 
-void ActorCritic::bc_weights(const Batch& batch, RowVec& w) const { w.setZero(batch.size()); }
+void ActorCritic::bc_weights(const Batch& batch, const Mat& /*q_pi*/, RowVec& w) { w.setZero(batch.size()); }
 
 void ActorCritic::split_means(const RowVec& v, int n_prior, float& prior, float& online) {
   const int b = static_cast<int>(v.size());
@@ -86,6 +86,10 @@ const Mat& ActorCritic::critic_input(const Mat& obs, const Mat& act) {
   sa_.topRows(obs_dim_) = obs;
   sa_.bottomRows(act_dim_) = act;
   return sa_;
+}
+
+const Mat& ActorCritic::first_critic(const Mat& obs, const Mat& act) {
+  return critics_.forward(critic_input(obs, act), actor_q_member_);
 }
 
 const RowVec& ActorCritic::target_q(const Mat& next_obs, const Mat& next_act) {
@@ -130,8 +134,8 @@ float ActorCritic::q_weight_of(const Mat& q) const {
 float ActorCritic::actor_objective(const Batch& batch, UpdateStats& stats, std::optional<float> fixed_q_weight) {
   const int b = batch.size();
   pi_ = actor_.forward(batch.obs);
-  const Mat& q = critics_.forward(critic_input(batch.obs, pi_), actor_q_member_);
-  const float lambda = fixed_q_weight ? *fixed_q_weight : q_weight_of(q);
+  q_pi_ = first_critic(batch.obs, pi_);  // a copy: the imitation rule may run the critic again
+  const float lambda = fixed_q_weight ? *fixed_q_weight : q_weight_of(q_pi_);
   // −λ·(1/B) Σ Q(s, π(s)): back-propagate through the critic into the action, not its weights.
   dq_pi_.setConstant(1, b, -lambda / static_cast<float>(b));
   dpi_ = critics_.input_gradient(dq_pi_).bottomRows(act_dim_);
@@ -141,7 +145,7 @@ float ActorCritic::actor_objective(const Batch& batch, UpdateStats& stats, std::
   split_means(grad_norm_, n_prior, stats.q_grad_prior, stats.q_grad_online);
 
   // The imitation term (1/B) Σ w_i ‖π(s_i) − a_i‖², the only place the algorithms differ.
-  bc_weights(batch, w_);
+  bc_weights(batch, q_pi_, w_);
   sq_err_ = (pi_ - batch.act).colwise().squaredNorm();
   const float bc = (w_.array() * sq_err_.array()).sum() / static_cast<float>(b);
   dpi_ += ((pi_ - batch.act).array().rowwise() * w_.array()).matrix() * (2.0f / static_cast<float>(b));
@@ -151,7 +155,7 @@ float ActorCritic::actor_objective(const Batch& batch, UpdateStats& stats, std::
   split_means(sq_err_, n_prior, stats.bc_prior, stats.bc_online);
   stats.bc_term = bc;
   stats.q_weight = lambda;
-  stats.actor_loss = -lambda * q.mean() + bc;
+  stats.actor_loss = -lambda * q_pi_.mean() + bc;
   return stats.actor_loss;
 }
 

@@ -13,7 +13,9 @@
 //   bc_weights()   the per-sample weight w_i of the imitation term in the actor loss
 //                  L(φ) = −λ·(1/B) Σ Q(s_i, π(s_i)) + (1/B) Σ w_i ‖π(s_i) − a_i‖²
 //                  (overridden in the files beside this one, with imitates(); the backbone's is
-//                  all zero), and
+//                  all zero). It may read the critic: Q1(s, π(s)) as the Q term saw it, and
+//                  Q1 at any actions through first_critic() (the Q-filter's Q1(s, a)); the
+//                  weights are constants of the step, no gradient flows through them. And
 //   uses_prior     whether half of every batch comes from the prior dataset: its row in
 //                  algos/registry.cpp, since the trainer, not the agent, draws the batches.
 // λ is 1 unless bc_q_alpha is on and the algorithm imitates (TD3+BC's normalisation, q_weight()).
@@ -107,8 +109,9 @@ class ActorCritic {
   CriticEnsemble& target_critics() { return critics_target_; }
 
  protected:
-  // w_i of the imitation term for each column of `batch` (w has batch.size() entries).
-  virtual void bc_weights(const Batch& batch, RowVec& w) const;
+  // w_i of the imitation term for each column of `batch` (w has batch.size() entries); `q_pi` is
+  // Q1(s, π(s)) per column (1 × B), the Q term's, held apart so that first_critic() may run.
+  virtual void bc_weights(const Batch& batch, const Mat& q_pi, RowVec& w);
   // Whether the actor loss has an imitation term (bc_weights not all zero by construction); only
   // then does bc_q_alpha scale the Q term, so it changes nothing for DDPG and RLPD.
   virtual bool imitates() const { return false; }
@@ -128,6 +131,9 @@ class ActorCritic {
   const RowVec& target_q(const Mat& next_obs, const Mat& next_act);
   // Writes [s; a] into the critic's input buffer.
   const Mat& critic_input(const Mat& obs, const Mat& act);
+  // Q1(s, a) of the first critic per column (1 × B), in the critic's output buffer: valid until
+  // the critic runs again.
+  const Mat& first_critic(const Mat& obs, const Mat& act);
   // Marks the acting copies out of date after the actor changed; sync_acting() refreshes them.
   void actor_changed() { acting_stale_ = true; }
   // Copies the actor's parameters into the network act() runs, acting_network() (a batch-1 copy
@@ -164,7 +170,7 @@ class ActorCritic {
   Adam actor_opt_;
   Rng update_rng_;
   // Preallocated per-update buffers.
-  Mat sa_, pi_, dpi_, dq_pi_, dq_, single_obs_, target_noise_;
+  Mat sa_, pi_, q_pi_, dpi_, dq_pi_, dq_, single_obs_, target_noise_;
   RowVec y_, w_, sq_err_, grad_norm_, next_q_;
   std::vector<int> actor_q_member_ = {0}, target_subset_;
 };

@@ -12,7 +12,7 @@ class ColAll : public ActorCritic {
 
  protected:
   bool imitates() const override { return true; }
-  void bc_weights(const Batch& batch, RowVec& w) const override {
+  void bc_weights(const Batch& batch, const Mat& /*q_pi*/, RowVec& w) override {
     w.setConstant(batch.size(), config().lambda_bc);
   }
 };

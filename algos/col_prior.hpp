@@ -12,7 +12,7 @@ class ColPrior : public ActorCritic {
  protected:
   bool imitates() const override { return true; }
   // (1/B) Σ w_i e_i = λ · mean over the prior columns of e_i  ⇔  w_i = λ·B/n_prior there, 0 else.
-  void bc_weights(const Batch& batch, RowVec& w) const override {
+  void bc_weights(const Batch& batch, const Mat& /*q_pi*/, RowVec& w) override {
     const int n = batch.prior_count;
     w.setZero(batch.size());
     if (n > 0) w.head(n).setConstant(config().lambda_bc * batch.size() / static_cast<float>(n));

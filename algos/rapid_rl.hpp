@@ -13,7 +13,7 @@ class RapidRl : public ActorCritic {
 
  protected:
   bool imitates() const override { return true; }
-  void bc_weights(const Batch& batch, RowVec& w) const override {
+  void bc_weights(const Batch& batch, const Mat& /*q_pi*/, RowVec& w) override {
     w = (batch.rew.array() - config().epsilon).cwiseMax(0.0f).matrix();
   }
 };

@@ -16,7 +16,7 @@ class RapidRlReturn : public ActorCritic {
 
  protected:
   bool imitates() const override { return true; }
-  void bc_weights(const Batch& batch, RowVec& w) const override {
+  void bc_weights(const Batch& batch, const Mat& /*q_pi*/, RowVec& w) override {
     w = (batch.ret.array() - config().epsilon).cwiseMax(0.0f).matrix();
   }
 };

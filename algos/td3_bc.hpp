@@ -34,7 +34,7 @@ class Td3Bc : public ActorCritic {
  protected:
   bool imitates() const override { return true; }
   // TD3+BC's F.mse_loss(π(s), a) averages over the action's entries as well as the batch.
-  void bc_weights(const Batch& batch, RowVec& w) const override {
+  void bc_weights(const Batch& batch, const Mat& /*q_pi*/, RowVec& w) override {
     w.setConstant(batch.size(), 1.0f / static_cast<float>(act_dim()));
   }
 
