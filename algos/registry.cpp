@@ -5,6 +5,7 @@
 
 #include "algos/col_all.hpp"
 #include "algos/col_prior.hpp"
+#include "algos/q_filter.hpp"
 #include "algos/rapid_rl.hpp"
 #include "algos/rapid_rl_return.hpp"
 #include "algos/rlpd_sac.hpp"
@@ -44,6 +45,9 @@ const std::vector<Algorithm>& algorithms() {
        /*uses_returns=*/false, /*in_paper=*/false, /*variant=*/false,
        {{"critic_ensemble", 2}, {"critic_subset", 2}, {"policy_delay", 2}, {"target_noise", 0.2},
         {"target_noise_clip", 0.5}, {"bc_q_alpha", 2.5}, {"critic_layer_norm", false}, {"init", "pytorch"}}},
+      // Not in the paper: CoL-prior's imitation kept where Q1(s, a) > Q1(s, π(s)) (q_filter.hpp).
+      {"q-filter", "Q-filter", "tab:olive", true, make<QFilter>, {"lambda_bc", "bc_q_alpha"},
+       /*uses_returns=*/false, /*in_paper=*/false, /*variant=*/false},
   };
   return table;
 }
