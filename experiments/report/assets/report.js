@@ -1,61 +1,4 @@
-#include "experiments/report/report_page_assets.hpp"
-
-namespace rapid {
-
-std::string report_page_css() {
-  return R"css(body { font: 14px/1.45 system-ui, -apple-system, "Segoe UI", sans-serif; margin: 0 auto; max-width: 1200px; padding: 0 16px 48px; color: #1b1b1b; }
-header { border-bottom: 1px solid #ccc; margin-bottom: 8px; }
-nav a { margin-right: 12px; }
-h2 { margin-top: 32px; border-bottom: 1px solid #eee; }
-table { border-collapse: collapse; margin: 8px 0 16px; }
-th, td { border: 1px solid #ddd; padding: 3px 8px; vertical-align: top; }
-thead th { background: #f4f4f4; }
-table.numbers td[data-sort] { text-align: right; font-variant-numeric: tabular-nums; }
-table.sortable thead th { cursor: pointer; user-select: none; }
-table.sortable thead th::after { content: " \2195"; color: #999; }
-table.sortable thead th[aria-sort="ascending"]::after { content: " \25B2"; color: #000; }
-table.sortable thead th[aria-sort="descending"]::after { content: " \25BC"; color: #000; }
-td.best { font-weight: bold; background: #e3f6fb; }
-td.cell a { color: inherit; text-decoration: none; border-bottom: 1px dotted #888; }
-table.facts th { text-align: left; background: #f9f9f9; white-space: nowrap; }
-#answer { background: #fafcff; border: 1px solid #dde6f0; border-radius: 6px; padding: 4px 14px; margin-top: 16px; }
-#answer h2 { margin-top: 8px; }
-ul.answer-best { margin: 4px 0 12px; padding-left: 20px; }
-.verdict { font-weight: bold; white-space: nowrap; }
-.verdict-pass, .verdict-confirmed { color: #176c1a; }
-.verdict-fail, .verdict-refuted { color: #b01c1c; }
-.verdict-n-a, .verdict-undecided { color: #7a5c00; }
-figure { margin: 16px 0; }
-img.figure { max-width: 100%; height: auto; border: 1px solid #eee; }
-figcaption { color: #444; font-size: 13px; }
-details.cell-detail { border: 1px solid #ddd; border-radius: 4px; margin: 4px 0; padding: 2px 8px; }
-details.cell-detail[open] { background: #fcfcfc; }
-details summary { cursor: pointer; }
-svg.seed-curves { font: 10px sans-serif; }
-svg.interval-plot, svg.profile { font: 10px sans-serif; }
-svg.interval-plot rect.frame, svg.profile rect.frame { fill: none; stroke: #999; }
-svg.interval-plot line.interval { stroke-width: 2; }
-svg.interval-plot line.reference { stroke: #777; stroke-dasharray: 4 3; }
-svg.profile polyline { fill: none; stroke-width: 1.6; }
-svg.profile text.title { font-weight: bold; }
-figure.profiles svg { margin-right: 8px; }
-svg.seed-curves rect.frame { fill: none; stroke: #999; }
-svg.seed-dots { font: 10px sans-serif; display: block; }
-svg.seed-dots line.axis { stroke: #999; }
-svg.seed-dots line.spread { stroke: #444; stroke-width: 4; stroke-opacity: 0.35; }
-svg.seed-dots line.mean { stroke: #222; stroke-width: 1.5; }
-svg.seed-curves polyline { fill: none; stroke-width: 1.4; }
-.swatch { display: inline-block; width: 10px; height: 10px; margin-right: 6px; border-radius: 2px; }
-.status-ok { color: #176c1a; }
-.status-failed, .status-diverged, .status-corrupt { color: #b01c1c; font-weight: bold; }
-.status-missing, .status-stale { color: #7a5c00; font-weight: bold; }
-code.absent { color: #777; }
-.note, .missing { color: #555; font-style: italic; }
-)css";
-}
-
-std::string report_page_script() {
-  return R"js((function () {
+(function () {
   'use strict';
   // What went wrong while the page ran; #selftest reports it.
   var problems = [];
@@ -195,7 +138,3 @@ std::string report_page_script() {
     if (location.hash === '#selftest') selfTest();
   });
 })();
-)js";
-}
-
-}  // namespace rapid
