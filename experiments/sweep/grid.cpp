@@ -485,11 +485,16 @@ Grid load_grid(const std::string& path) {
   return parse_grid(doc, path);
 }
 
+json algo_overrides(const Grid& grid, const std::string& scenario, const std::string& algo) {
+  if (algo.empty() || !grid.algo_config.contains(scenario) || !grid.algo_config[scenario].contains(algo))
+    return json::object();
+  return grid.algo_config[scenario][algo];
+}
+
 json grid_overrides(const Grid& grid, const std::string& scenario, const std::string& algo) {
   json out = grid.config;
   if (grid.scenario_config.contains(scenario)) out.update(grid.scenario_config[scenario]);
-  if (!algo.empty() && grid.algo_config.contains(scenario) && grid.algo_config[scenario].contains(algo))
-    out.update(grid.algo_config[scenario][algo]);
+  out.update(algo_overrides(grid, scenario, algo));
   return out;
 }
 
@@ -534,8 +539,7 @@ nlohmann::json cell_config(const Grid& grid, const std::string& scenario, const 
   for (const auto& [key, value] : point) overrides[key] = value;
   // No key is in both (parse_algo_config), so this order and `rapid run`'s (algo_config, then the
   // point's --set) resolve the same config.
-  if (!algo.empty() && grid.algo_config.contains(scenario) && grid.algo_config[scenario].contains(algo))
-    overrides.update(grid.algo_config[scenario][algo]);
+  overrides.update(algo_overrides(grid, scenario, algo));
   return resolve_config(scenario, grid.profile, overrides, nlohmann::json());
 }
 

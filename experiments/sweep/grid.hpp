@@ -89,6 +89,11 @@ Grid load_grid(const std::string& path);
 // The same validation on an already parsed document; `label` names it in messages.
 Grid parse_grid(const nlohmann::json& document, const std::string& label);
 
+// "algo_config"[scenario][algo] of the grid: the overrides of that algorithm's cells in that
+// scenario; an empty object when the grid has none (or `algo` is empty). The one reader of the
+// key's nesting.
+nlohmann::json algo_overrides(const Grid& grid, const std::string& scenario, const std::string& algo);
+
 // The overrides a job of `scenario` gets: "config", then "scenario_config"[scenario] on top, then
 // for a cell of `algo` (empty: the reference and dataset jobs) "algo_config"[scenario][algo].
 nlohmann::json grid_overrides(const Grid& grid, const std::string& scenario, const std::string& algo = "");

@@ -69,7 +69,7 @@ TunePlan plan_tune(const Grid& grid, const SearchSpace& space) {
     json algo_config = grid.algo_config;
     for (const std::string& scenario : grid.scenarios)
       for (const std::string& algo : grid.algos) {
-        json overrides = algo_config.contains(scenario) && algo_config[scenario].contains(algo) ? algo_config[scenario][algo] : json::object();
+        json overrides = algo_overrides(grid, scenario, algo);
         overrides.update(trial_overrides(space, scenario));
         overrides.update(candidate_overrides(space, scenario, algo, k));
         if (!overrides.empty()) algo_config[scenario][algo] = overrides;
@@ -172,7 +172,7 @@ json tuned_grid(const TunePlan& plan, const std::vector<TrialScores>& searches) 
   for (const TrialScores& t : searches) {
     const json& winner = t.overrides[static_cast<std::size_t>(t.state.winner)];
     if (winner.empty()) continue;
-    json overrides = algo_config.contains(t.scenario) && algo_config[t.scenario].contains(t.algo) ? algo_config[t.scenario][t.algo] : json::object();
+    json overrides = algo_overrides(plan.grid, t.scenario, t.algo);
     overrides.update(winner);
     algo_config[t.scenario][t.algo] = overrides;
   }
