@@ -10,11 +10,12 @@
 namespace rapid {
 
 void check_critic_settings(const AgentConfig& c) {
-  if (c.critic_ensemble < 1)
-    throw std::invalid_argument("config key 'critic_ensemble' must be at least 1, got " + std::to_string(c.critic_ensemble));
-  if (c.critic_subset < 1 || c.critic_subset > c.critic_ensemble)
-    throw std::invalid_argument("config key 'critic_subset' must be 1 to critic_ensemble (" +
-                                std::to_string(c.critic_ensemble) + "), got " + std::to_string(c.critic_subset));
+  const int ensemble = c.method.integer(kCriticEnsemble), subset = c.method.integer(kCriticSubset);
+  if (ensemble < 1)
+    throw std::invalid_argument("config key 'critic_ensemble' must be at least 1, got " + std::to_string(ensemble));
+  if (subset < 1 || subset > ensemble)
+    throw std::invalid_argument("config key 'critic_subset' must be 1 to critic_ensemble (" + std::to_string(ensemble) +
+                                "), got " + std::to_string(subset));
 }
 
 namespace {
@@ -34,9 +35,13 @@ ActorCritic::ActorCritic(int obs_dim, int act_dim, const AgentConfig& config, st
       obs_dim_(obs_dim),
       act_dim_(act_dim),
       actor_(std::move(actor)),
-      critics_(obs_dim + act_dim, config.critic_hidden, config.critic_ensemble, config.critic_lr,
+      critics_(obs_dim + act_dim, config.critic_hidden, config.method.integer(kCriticEnsemble), config.critic_lr,
                config.critic_layer_norm),
-      update_rng_(stream_seed(init_seed, Stream::kUpdate)) {
+      update_rng_(stream_seed(init_seed, Stream::kUpdate)),
+      critic_subset_(config.method.integer(kCriticSubset)),
+      target_noise_std_(config.method.number(kTargetNoise)),
+      target_noise_clip_(config.method.number(kTargetNoiseClip)),
+      bc_q_alpha_(config.method.number(kBcQAlpha)) {
   Rng rng(init_seed);
   actor_.init(rng, config.init, actor_heads);
   critics_.init(rng, config.init);
@@ -93,7 +98,7 @@ const Mat& ActorCritic::first_critic(const Mat& obs, const Mat& act) {
 }
 
 const RowVec& ActorCritic::target_q(const Mat& next_obs, const Mat& next_act) {
-  critics_target_.draw_subset(update_rng_, config_.critic_subset, target_subset_);
+  critics_target_.draw_subset(update_rng_, critic_subset_, target_subset_);
   const Mat& next_q = critics_target_.forward(critic_input(next_obs, next_act), target_subset_);
   next_q_ = next_q.colwise().minCoeff();
   return next_q_;
@@ -102,14 +107,14 @@ const RowVec& ActorCritic::target_q(const Mat& next_obs, const Mat& next_act) {
 const RowVec& ActorCritic::critic_targets(const Batch& batch) {
   const Mat& next_action = actor_target_.forward(batch.next_obs);
   const Mat* target_action = &next_action;
-  if (config_.target_noise > 0.0f) {
+  if (target_noise_std_ > 0.0f) {
     // TD3's target policy smoothing: clip(π'(s') + clip(N(0, σ̃), −c, c), −1, 1).
     target_noise_.resize(next_action.rows(), next_action.cols());
     for (Eigen::Index c = 0; c < target_noise_.cols(); ++c)
       for (Eigen::Index r = 0; r < target_noise_.rows(); ++r) {
-        const float n = static_cast<float>(update_rng_.normal(0.0, config_.target_noise));
+        const float n = static_cast<float>(update_rng_.normal(0.0, target_noise_std_));
         target_noise_(r, c) = std::clamp(
-            next_action(r, c) + std::clamp(n, -config_.target_noise_clip, config_.target_noise_clip), -1.0f, 1.0f);
+            next_action(r, c) + std::clamp(n, -target_noise_clip_, target_noise_clip_), -1.0f, 1.0f);
       }
     target_action = &target_noise_;
   }
@@ -127,8 +132,8 @@ const RowVec& ActorCritic::critic_targets(const Batch& batch) {
 // one bit for bit (a product with 1 is exact).
 float ActorCritic::q_weight_of(const Mat& q) const {
   constexpr float kMinMeanAbsQ = 1e-3f;
-  if (config_.bc_q_alpha <= 0.0f || !imitates()) return 1.0f;
-  return config_.bc_q_alpha / std::max(q.cwiseAbs().mean(), kMinMeanAbsQ);
+  if (bc_q_alpha_ <= 0.0f || !imitates()) return 1.0f;
+  return bc_q_alpha_ / std::max(q.cwiseAbs().mean(), kMinMeanAbsQ);
 }
 
 float ActorCritic::actor_objective(const Batch& batch, UpdateStats& stats, std::optional<float> fixed_q_weight) {

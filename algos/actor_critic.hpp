@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "algos/agent_config.hpp"
+#include "algos/method_key.hpp"
 #include "core/adam.hpp"
 #include "core/critic_ensemble.hpp"
 #include "core/mlp.hpp"
@@ -34,6 +35,24 @@
 #include "core/rng.hpp"
 
 namespace rapid {
+
+// The backbone's optional pieces, each off at its neutral value for the paper's five; td3-bc's and
+// rlpd-sac's recipes switch them on (algos/registry.cpp lists which algorithms read them).
+inline constexpr MethodKey kCriticEnsemble{
+    "critic_ensemble", MethodKey::kInteger, kPositive,
+    "number N of critics; the actor's Q term reads the first (TD3's Q1), rlpd-sac's their mean", 1};
+inline constexpr MethodKey kCriticSubset{
+    "critic_subset", MethodKey::kInteger, kPositive,
+    "target critics M ≤ N drawn afresh per step, the target taking their minimum (M = N: all, undrawn)", 1};
+inline constexpr MethodKey kTargetNoise{"target_noise", MethodKey::kNumber, kNonNegative,
+                                    "std of the Gaussian noise on the target action (TD3's target policy smoothing)", 0};
+inline constexpr MethodKey kTargetNoiseClip{"target_noise_clip", MethodKey::kNumber, kNonNegative,
+                                        "the target noise clipped to ±this", 0};
+inline constexpr MethodKey kBcQAlpha{
+    "bc_q_alpha", MethodKey::kNumber, kNonNegative,
+    "TD3+BC's α: an algorithm with an imitation term scales its actor loss's Q term by λ = α / (mean absolute "
+    "Q(s, π(s)) over the batch); 0: off (no scaling)",
+    0};
 
 // The backbone's critic pieces as a config gives them: no default stands in for a missing value
 // (agent_config.hpp), so critic_ensemble below 1, or critic_subset outside 1..critic_ensemble, is
@@ -62,6 +81,14 @@ struct UpdateStats {
   bool finite = true;           // false if a loss came out NaN or inf
 };
 
+// An algorithm's update schedule: how many learning steps (update() calls, each on a fresh batch)
+// it takes per decision, and once per how many of them its actor moves. The trainer and the
+// benchmarks ask the agent; no one else reads the keys that set it (utd_ratio, policy_delay).
+struct UpdateSchedule {
+  int steps_per_decision = 1;
+  int actor_every = 1;
+};
+
 class ActorCritic {
  public:
   // The networks are initialised from `init_seed`; the randomness of the updates themselves (the
@@ -77,8 +104,11 @@ class ActorCritic {
   // noise of std noise_std from `rng`, clipped to [-1, 1].
   virtual void explore(const ConstVecRef& obs, Rng& rng, Vec& action);
 
-  // One learning step on `batch` (the trainer calls it utd_ratio times per decision, each on a
-  // fresh batch): the actor on (2), then the critic on (3), then the targets (Algorithm 1's order).
+  // One learning step per decision, moving the actor every time (the paper's five).
+  virtual UpdateSchedule schedule() const { return {}; }
+  // One learning step on `batch` (the trainer calls it schedule().steps_per_decision times per
+  // decision, each on a fresh batch): the actor on (2), then the critic on (3), then the targets
+  // (Algorithm 1's order).
   virtual UpdateStats update(const Batch& batch);
 
   // The critic's target y = r + γ·(1 − terminal)·min over the subset of Q'_j(s', π'(s')), with
@@ -169,6 +199,9 @@ class ActorCritic {
   bool acting_stale_ = false;
   Adam actor_opt_;
   Rng update_rng_;
+  // The backbone's optional pieces as the config sets them (read once: update() runs per decision).
+  int critic_subset_;
+  float target_noise_std_, target_noise_clip_, bc_q_alpha_;
   // Preallocated per-update buffers.
   Mat sa_, pi_, q_pi_, dpi_, dq_pi_, dq_, single_obs_, target_noise_;
   RowVec y_, w_, sq_err_, grad_norm_, next_q_;

@@ -2,7 +2,7 @@
 // included (so it also imitates its own early, poor actions).
 #pragma once
 
-#include "algos/actor_critic.hpp"
+#include "algos/col_prior.hpp"
 
 namespace rapid {
 
@@ -13,7 +13,7 @@ class ColAll : public ActorCritic {
  protected:
   bool imitates() const override { return true; }
   void bc_weights(const Batch& batch, const Mat& /*q_pi*/, RowVec& w) override {
-    w.setConstant(batch.size(), config().lambda_bc);
+    w.setConstant(batch.size(), config().method.number(kLambdaBc));
   }
 };
 

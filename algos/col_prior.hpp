@@ -5,6 +5,9 @@
 
 namespace rapid {
 
+// CoL's imitation weight; CoL-all and the Q-filter read it too.
+inline constexpr MethodKey kLambdaBc{"lambda_bc", MethodKey::kNumber, kNonNegative, "CoL's imitation weight λ_BC"};
+
 class ColPrior : public ActorCritic {
  public:
   using ActorCritic::ActorCritic;
@@ -15,7 +18,7 @@ class ColPrior : public ActorCritic {
   void bc_weights(const Batch& batch, const Mat& /*q_pi*/, RowVec& w) override {
     const int n = batch.prior_count;
     w.setZero(batch.size());
-    if (n > 0) w.head(n).setConstant(config().lambda_bc * batch.size() / static_cast<float>(n));
+    if (n > 0) w.head(n).setConstant(config().method.number(kLambdaBc) * batch.size() / static_cast<float>(n));
   }
 };
 

@@ -7,7 +7,7 @@
 // through it, as in the paper's filter); λ_BC and the Q term's scale are CoL-prior's keys.
 #pragma once
 
-#include "algos/actor_critic.hpp"
+#include "algos/col_prior.hpp"
 
 namespace rapid {
 
@@ -23,7 +23,7 @@ class QFilter : public ActorCritic {
     w.setZero(batch.size());
     if (n == 0) return;
     const Mat& q_data = first_critic(batch.obs, batch.act);
-    const float weight = config().lambda_bc * batch.size() / static_cast<float>(n);
+    const float weight = config().method.number(kLambdaBc) * batch.size() / static_cast<float>(n);
     for (int i = 0; i < n; ++i) w[i] = q_data(0, i) > q_pi(0, i) ? weight : 0.0f;
   }
 };

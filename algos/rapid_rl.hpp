@@ -7,6 +7,9 @@
 
 namespace rapid {
 
+inline constexpr MethodKey kEpsilon{"epsilon", MethodKey::kNumber, kAnyNumber,
+                                "RAPID-RL's reward threshold ε, in the scenario's reward units (docs/scenarios.md)"};
+
 class RapidRl : public ActorCritic {
  public:
   using ActorCritic::ActorCritic;
@@ -14,7 +17,7 @@ class RapidRl : public ActorCritic {
  protected:
   bool imitates() const override { return true; }
   void bc_weights(const Batch& batch, const Mat& /*q_pi*/, RowVec& w) override {
-    w = (batch.rew.array() - config().epsilon).cwiseMax(0.0f).matrix();
+    w = (batch.rew.array() - config().method.number(kEpsilon)).cwiseMax(0.0f).matrix();
   }
 };
 

@@ -6,9 +6,15 @@
 // same ε applies.
 #pragma once
 
-#include "algos/actor_critic.hpp"
+#include "algos/rapid_rl.hpp"
 
 namespace rapid {
+
+inline constexpr MethodKey kReturnHorizon{
+    "return_horizon", MethodKey::kInteger, kPositive,
+    "RAPID-RL (return)'s window n: it imitates a transition by relu(Ḡ − ε), Ḡ the mean reward over the next n "
+    "decisions of its episode; absent: not given, and rapid-rl-return refuses to run",
+    0};
 
 class RapidRlReturn : public ActorCritic {
  public:
@@ -17,7 +23,7 @@ class RapidRlReturn : public ActorCritic {
  protected:
   bool imitates() const override { return true; }
   void bc_weights(const Batch& batch, const Mat& /*q_pi*/, RowVec& w) override {
-    w = (batch.ret.array() - config().epsilon).cwiseMax(0.0f).matrix();
+    w = (batch.ret.array() - config().method.number(kEpsilon)).cwiseMax(0.0f).matrix();
   }
 };
 

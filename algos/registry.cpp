@@ -23,47 +23,47 @@ std::unique_ptr<ActorCritic> make(int obs_dim, int act_dim, const AgentConfig& c
 
 const std::vector<Algorithm>& algorithms() {
   static const std::vector<Algorithm> table = {
-      // name       display      colour     prior  the actor loss's imitation weights  own keys
-      {kRapidRl, "RAPID-RL", "tab:red", true, make<RapidRl>, {"epsilon", "bc_q_alpha"}},
+      // name       display      colour     prior  the agent              method keys it reads
+      {kRapidRl, "RAPID-RL", "tab:red", true, make<RapidRl>, {&kEpsilon, &kBcQAlpha}},
       // RLPD as the paper uses it: the backbone on symmetric batches, no imitation term.
       {"rlpd", "RLPD", "tab:blue", true, make<ActorCritic>, {}},
-      {"col-prior", "CoL-prior", "tab:green", true, make<ColPrior>, {"lambda_bc", "bc_q_alpha"}},
-      {"col-all", "CoL-all", "tab:purple", true, make<ColAll>, {"lambda_bc", "bc_q_alpha"}},
+      {"col-prior", "CoL-prior", "tab:green", true, make<ColPrior>, {&kLambdaBc, &kBcQAlpha}},
+      {"col-all", "CoL-all", "tab:purple", true, make<ColAll>, {&kLambdaBc, &kBcQAlpha}},
       {"ddpg", "DDPG", "tab:gray", false, make<ActorCritic>, {}},
       // Not in the paper: RAPID-RL weighting by the mean reward over the next decisions.
-      {"rapid-rl-return", "RAPID-RL (return)", "tab:orange", true, make<RapidRlReturn>, {"epsilon", "return_horizon", "bc_q_alpha"},
-       /*uses_returns=*/true, /*in_paper=*/false, /*variant=*/true},
+      {"rapid-rl-return", "RAPID-RL (return)", "tab:orange", true, make<RapidRlReturn>,
+       {&kEpsilon, &kReturnHorizon, &kBcQAlpha}, /*uses_returns=*/true, /*in_paper=*/false, /*variant=*/true},
       // Not in the paper: RLPD as published (SAC, an ensemble of 10 critics, UTD 20; rlpd_sac.hpp).
       {"rlpd-sac", "RLPD (SAC)", "tab:cyan", true, make<RlpdSac>,
-       {"utd_ratio", "critic_ensemble", "critic_subset", "init_temperature", "target_entropy_per_dim", "temperature_lr"},
-       /*uses_returns=*/false, /*in_paper=*/false, /*variant=*/false,
-       {{"utd_ratio", 20}, {"critic_ensemble", 10}, {"critic_subset", 2}, {"init_temperature", 1},
-        {"target_entropy_per_dim", -0.5}, {"temperature_lr", 3e-4}, {"critic_layer_norm", true}, {"init", "xavier"}}},
+       {&kUtdRatio, &kCriticEnsemble, &kCriticSubset, &kInitTemperature, &kTargetEntropyPerDim, &kTemperatureLr},
+       /*uses_returns=*/false, /*in_paper=*/false, /*variant=*/false, rlpd_sac_recipe()},
       // Not in the paper: TD3+BC online on symmetric batches (td3_bc.hpp).
       {"td3-bc", "TD3+BC", "tab:brown", true, make<Td3Bc>,
-       {"critic_ensemble", "critic_subset", "policy_delay", "target_noise", "target_noise_clip", "bc_q_alpha"},
-       /*uses_returns=*/false, /*in_paper=*/false, /*variant=*/false,
-       {{"critic_ensemble", 2}, {"critic_subset", 2}, {"policy_delay", 2}, {"target_noise", 0.2},
-        {"target_noise_clip", 0.5}, {"bc_q_alpha", 2.5}, {"critic_layer_norm", false}, {"init", "pytorch"}}},
+       {&kCriticEnsemble, &kCriticSubset, &kPolicyDelay, &kTargetNoise, &kTargetNoiseClip, &kBcQAlpha},
+       /*uses_returns=*/false, /*in_paper=*/false, /*variant=*/false, td3_bc_recipe()},
       // Not in the paper: CoL-prior's imitation kept where Q1(s, a) > Q1(s, π(s)) (q_filter.hpp).
-      {"q-filter", "Q-filter", "tab:olive", true, make<QFilter>, {"lambda_bc", "bc_q_alpha"},
+      {"q-filter", "Q-filter", "tab:olive", true, make<QFilter>, {&kLambdaBc, &kBcQAlpha},
        /*uses_returns=*/false, /*in_paper=*/false, /*variant=*/false},
   };
   return table;
 }
 
-bool Algorithm::reads(const std::string& key) const {
-  if (std::find(own_keys.begin(), own_keys.end(), key) != own_keys.end()) return true;
-  return !is_algorithm_key(key);
+namespace {
+bool lists(const std::vector<const MethodKey*>& keys, const std::string& name) {
+  return std::any_of(keys.begin(), keys.end(), [&](const MethodKey* k) { return k->name == name; });
 }
+}  // namespace
+
+bool Algorithm::reads(const std::string& key) const { return lists(keys, key) || !is_algorithm_key(key); }
 
 int Algorithm::return_window(const AgentConfig& config) const {
   if (!uses_returns) return 1;
-  if (config.return_horizon < 1)
+  const int horizon = config.method.integer(kReturnHorizon);
+  if (horizon < 1)
     throw std::invalid_argument("algorithm '" + name +
                                 "' needs config key 'return_horizon' (decisions of the return window; e.g. --set "
                                 "return_horizon=20)");
-  return config.return_horizon;
+  return horizon;
 }
 
 void Algorithm::check(const AgentConfig& config) const {
@@ -76,9 +76,15 @@ void Algorithm::check(const AgentConfig& config) const {
 }
 
 bool is_algorithm_key(const std::string& key) {
+  return std::any_of(algorithms().begin(), algorithms().end(), [&](const Algorithm& a) { return lists(a.keys, key); });
+}
+
+std::vector<const MethodKey*> method_keys() {
+  std::vector<const MethodKey*> keys;
   for (const Algorithm& a : algorithms())
-    if (std::find(a.own_keys.begin(), a.own_keys.end(), key) != a.own_keys.end()) return true;
-  return false;
+    for (const MethodKey* k : a.keys)
+      if (!lists(keys, k->name)) keys.push_back(k);
+  return keys;
 }
 
 std::vector<std::string> algo_names() {

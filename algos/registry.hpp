@@ -1,5 +1,6 @@
 // The algorithms, one row each. Every list of algorithm names, every help text and every report
-// reads this table, so adding an algorithm is one header (its imitation weights) and one row.
+// reads this table, so adding an algorithm is one header (its imitation weights, or its update
+// rule, with the keys it declares) and one row.
 #pragma once
 
 #include <cstdint>
@@ -26,11 +27,12 @@ struct Algorithm {
   bool uses_prior = false;
   std::unique_ptr<ActorCritic> (*make)(int obs_dim, int act_dim, const AgentConfig& config,
                                        std::uint64_t init_seed) = nullptr;
-  // The algorithm-specific config keys it reads (ε, λ_BC, …). A key some algorithm lists here is
-  // read by those algorithms only; every other key is read by all of them. Sweeps rely on it: a
-  // grid axis over such a key does not duplicate the jobs of the algorithms that ignore it
-  // (tests/test_algos.cpp checks that changing the key leaves their updates unchanged).
-  std::vector<std::string> own_keys;
+  // The method keys it reads (ε, λ_BC, …; algos/method_key.hpp), declared in the files of the code
+  // that reads them. A method key is read by the algorithms that list it only; every other config
+  // key is read by all of them. Sweeps rely on it: a grid axis over such a key does not duplicate
+  // the jobs of the algorithms that ignore it (tests/test_algos.cpp checks that changing the key
+  // leaves their updates unchanged).
+  std::vector<const MethodKey*> keys;
   // Its imitation weights read Batch::ret, each transition's mean reward over the next
   // `return_horizon` decisions of its episode: a run builds its buffers with that window, and
   // needs the key and a prior dataset made of episodes.
@@ -44,8 +46,8 @@ struct Algorithm {
   // The published values of the method's keys (RLPD's UTD, ensemble and temperature, TD3's delay
   // and noise, each code base's critic LayerNorm and initialisation), given to a run whose config
   // leaves the key out (experiments/run/job.hpp, with_recipe): the run's record lists the keys
-  // they filled. A config that gives the key wins. Each value's source is in docs/algorithms.md.
-  std::vector<std::pair<std::string, nlohmann::json>> recipe = {};
+  // they filled. A config that gives the key wins. Written beside the algorithm with its sources.
+  Recipe recipe = {};
 
   bool reads(const std::string& key) const;
   // The window its buffers compute Batch::ret over: return_horizon for an algorithm that uses
@@ -61,8 +63,12 @@ struct Algorithm {
 const std::vector<Algorithm>& algorithms();
 std::vector<std::string> algo_names();
 
-// Whether some algorithm lists `key` among its own keys (then the others ignore it).
+// Whether some algorithm lists `key` among its method keys (then the others ignore it).
 bool is_algorithm_key(const std::string& key);
+
+// Every algorithm's method keys, each once, in the order the rows first list them: the run
+// config's key table has a row for each.
+std::vector<const MethodKey*> method_keys();
 
 // Throws std::invalid_argument("unknown algorithm '…'; expected one of …").
 const Algorithm& find_algorithm(const std::string& name);

@@ -16,10 +16,10 @@ Mlp gaussian_actor(int obs_dim, int act_dim, const AgentConfig& config) {
 // The temperature's keys as a config gives them (its recipe fills them where a config leaves
 // them out): no default stands in for a missing one (agent_config.hpp).
 const AgentConfig& with_temperature_checked(const AgentConfig& c) {
-  if (!(c.init_temperature > 0))
-    throw std::invalid_argument("config key 'init_temperature' must be > 0, got " + std::to_string(c.init_temperature));
-  if (!(c.temperature_lr > 0))
-    throw std::invalid_argument("config key 'temperature_lr' must be > 0, got " + std::to_string(c.temperature_lr));
+  for (const MethodKey* key : {&kInitTemperature, &kTemperatureLr})
+    if (!(c.method.number(*key) > 0))
+      throw std::invalid_argument("config key '" + std::string(key->name) + "' must be > 0, got " +
+                                  std::to_string(c.method.number(*key)));
   return c;
 }
 
@@ -30,10 +30,11 @@ RlpdSac::RlpdSac(int obs_dim, int act_dim, const AgentConfig& config, std::uint6
                   gaussian_actor(obs_dim, act_dim, config).first_outputs(act_dim, /*tanh_output=*/true),
                   /*actor_heads=*/2),
       sampling_actor_(actor()),
-      log_temperature_(Vec::Constant(1, std::log(config.init_temperature))),
+      log_temperature_(Vec::Constant(1, std::log(config.method.number(kInitTemperature)))),
       temperature_grad_(Vec::Zero(1)),
-      temperature_opt_(1, AdamConfig{.lr = config.temperature_lr}),
-      target_entropy_(config.target_entropy_per_dim * static_cast<float>(act_dim)),
+      temperature_opt_(1, AdamConfig{.lr = config.method.number(kTemperatureLr)}),
+      target_entropy_(config.method.number(kTargetEntropyPerDim) * static_cast<float>(act_dim)),
+      utd_ratio_(config.method.integer(kUtdRatio)),
       single_noise_(act_dim, 1) {}
 
 float RlpdSac::temperature() const { return std::exp(log_temperature_[0]); }
@@ -129,7 +130,7 @@ UpdateStats RlpdSac::update(const Batch& batch) {
   UpdateStats stats;
   critic_step(batch, stats);
   target_critics().soft_update_from(critics(), config().tau);
-  stats.actor_updated = ++critic_steps_ % config().utd_ratio == 0;
+  stats.actor_updated = ++critic_steps_ % utd_ratio_ == 0;
   if (stats.actor_updated) actor_and_temperature_step(batch, stats);
   stats.temperature = temperature();
   stats.finite = std::isfinite(stats.critic_loss) && std::isfinite(stats.actor_loss) && std::isfinite(stats.temperature);

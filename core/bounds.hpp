@@ -18,4 +18,8 @@ struct Bounds {
   std::string text() const;
 };
 
+inline constexpr Bounds kAnyNumber{};
+inline constexpr Bounds kPositive{.lo = 0, .lo_open = true};
+inline constexpr Bounds kNonNegative{.lo = 0};
+
 }  // namespace rapid

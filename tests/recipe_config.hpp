@@ -12,9 +12,10 @@
 
 namespace rapid::test {
 
-// `config` with the backbone's pieces at their neutral values, then `name`'s recipe.
+// `config` with `name`'s recipe on top: the networks' build (critic LayerNorm, initialisation) at
+// the paper's five's unless the recipe says otherwise, and the recipe's method keys. (A method key
+// `config` does not set holds its neutral value already.)
 inline AgentConfig with_recipe(AgentConfig c, const std::string& name) {
-  c.utd_ratio = c.critic_ensemble = c.critic_subset = c.policy_delay = 1;
   c.critic_layer_norm = true;
   c.init = WeightInit::kDdpg;
   for (const auto& [key, v] : find_algorithm(name).recipe) {
@@ -24,19 +25,10 @@ inline AgentConfig with_recipe(AgentConfig c, const std::string& name) {
       if (!scheme) ADD_FAILURE() << "recipe init " << v;
       else c.init = *scheme;
     } else {
-      const float f = v.get<float>();
-      const int i = v.get<int>();
-      if (key == "utd_ratio") c.utd_ratio = i;
-      else if (key == "critic_ensemble") c.critic_ensemble = i;
-      else if (key == "critic_subset") c.critic_subset = i;
-      else if (key == "policy_delay") c.policy_delay = i;
-      else if (key == "target_noise") c.target_noise = f;
-      else if (key == "target_noise_clip") c.target_noise_clip = f;
-      else if (key == "init_temperature") c.init_temperature = f;
-      else if (key == "target_entropy_per_dim") c.target_entropy_per_dim = f;
-      else if (key == "temperature_lr") c.temperature_lr = f;
-      else if (key == "bc_q_alpha") c.bc_q_alpha = f;
-      else ADD_FAILURE() << "recipe key " << key << " has no field here";
+      const auto keys = method_keys();
+      const auto it = std::find_if(keys.begin(), keys.end(), [&](const MethodKey* k) { return k->name == key; });
+      if (it == keys.end()) ADD_FAILURE() << "recipe key " << key << " is no method key";
+      else c.method.set(**it, v.get<double>());
     }
   }
   return c;

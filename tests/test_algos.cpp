@@ -11,8 +11,11 @@
 #include <string>
 #include <tuple>
 
+#include "algos/col_prior.hpp"
+#include "algos/rapid_rl_return.hpp"
 #include "algos/registry.hpp"
 #include "algos/rlpd_sac.hpp"
+#include "algos/td3_bc.hpp"
 #include "core/tanh_gaussian.hpp"
 #include "tests/finite_difference.hpp"
 #include "tests/recipe_config.hpp"
@@ -33,8 +36,8 @@ AgentConfig small_config() {
   c.tau = 0.005f;
   c.batch_size = kBatch;
   c.noise_std = 0.1f;
-  c.epsilon = -0.15f;
-  c.lambda_bc = 1.0f;
+  c.method.set(kEpsilon, -0.15f);
+  c.method.set(kLambdaBc, 1.0f);
   return test::with_recipe(c, "ddpg");  // the backbone's pieces at their neutral values
 }
 
@@ -95,7 +98,7 @@ class ActorLossGradient : public ::testing::TestWithParam<std::tuple<std::string
 TEST_P(ActorLossGradient, AgreesWithFiniteDifferences) {
   const auto& [name, alpha] = GetParam();
   AgentConfig config = small_config();
-  config.bc_q_alpha = alpha;
+  config.method.set(kBcQAlpha, alpha);
   auto a = perturbed_agent(name, config);
   const Batch batch = hand_made_batch();
   // The analytic gradient holds λ constant, so the finite differences must too: λ is taken once,
@@ -208,7 +211,7 @@ TEST(RapidRlReturn, NeedsReturnHorizonTheOthersUseAWindowOfOne) {
                  "algorithm 'rapid-rl-return' needs config key 'return_horizon' (decisions of the return window; e.g. "
                  "--set return_horizon=20)");
   }
-  config.return_horizon = 20;
+  config.method.set(kReturnHorizon, 20);
   EXPECT_EQ(find_algorithm("rapid-rl-return").return_window(config), 20);
   for (const Algorithm& a : algorithms())
     EXPECT_EQ(a.return_window(config), a.name == "rapid-rl-return" ? 20 : 1) << a.name;
@@ -325,16 +328,16 @@ Batch sampled_batch(const Algorithm& algo, const AgentConfig& config, std::uint6
 TEST(Registry, AlgorithmsIgnoreTheKeysOfOtherAlgorithms) {
   // Each algorithm-specific key with a setter of its AgentConfig field at two values far apart.
   const std::vector<std::pair<std::string, std::function<void(AgentConfig&, bool high)>>> keys = {
-      {"epsilon", [](AgentConfig& c, bool high) { c.epsilon = high ? 5.0f : 0.01f; }},
-      {"lambda_bc", [](AgentConfig& c, bool high) { c.lambda_bc = high ? 5.0f : 0.01f; }},
-      {"bc_q_alpha", [](AgentConfig& c, bool high) { c.bc_q_alpha = high ? 5.0f : 0.01f; }},
-      {"return_horizon", [](AgentConfig& c, bool high) { c.return_horizon = high ? 20 : 1; }},
+      {"epsilon", [](AgentConfig& c, bool high) { c.method.set(kEpsilon, high ? 5.0f : 0.01f); }},
+      {"lambda_bc", [](AgentConfig& c, bool high) { c.method.set(kLambdaBc, high ? 5.0f : 0.01f); }},
+      {"bc_q_alpha", [](AgentConfig& c, bool high) { c.method.set(kBcQAlpha, high ? 5.0f : 0.01f); }},
+      {"return_horizon", [](AgentConfig& c, bool high) { c.method.set(kReturnHorizon, high ? 20 : 1); }},
   };
   for (const auto& [key, set] : keys) EXPECT_TRUE(is_algorithm_key(key)) << key;
   for (const Algorithm& algo : algorithms())
     for (const auto& [key, set] : keys) {
       AgentConfig low = recipe_config(algo.name), high = recipe_config(algo.name);
-      low.return_horizon = high.return_horizon = 5;  // rapid-rl-return needs one
+      low.method.set(kReturnHorizon, 5); high.method.set(kReturnHorizon, 5);  // rapid-rl-return needs one
       set(low, false);
       set(high, true);
       auto a = perturbed_agent(algo.name, low), b = perturbed_agent(algo.name, high);
@@ -365,7 +368,7 @@ TEST(QNormalisation, TheQPartIsAlphaTimesMeanQOverMeanAbsQ) {
   for (const char* name : {"rapid-rl", "col-prior", "col-all"}) {
     SCOPED_TRACE(name);
     AgentConfig on = small_config();
-    on.bc_q_alpha = alpha;
+    on.method.set(kBcQAlpha, alpha);
     auto plain = perturbed_agent(name, small_config()), normalised = perturbed_agent(name, on);
     const RowVec q = q_of_policy(*plain, batch);
     ASSERT_GT(q.cwiseAbs().mean(), 0.05f);  // well above the floor
@@ -392,7 +395,7 @@ TEST(QNormalisation, OffIsThePlainLossBitForBit) {
 // A critic whose Q is 0 everywhere (all weights zero) would make λ infinite; the floor keeps it finite.
 TEST(QNormalisation, AFloorKeepsLambdaFiniteWhenEveryQIsZero) {
   AgentConfig on = small_config();
-  on.bc_q_alpha = 2.5f;
+  on.method.set(kBcQAlpha, 2.5f);
   auto a = find_algorithm("rapid-rl").make(kObs, kAct, on, 17);
   a->critic().params().setZero();
   const Batch batch = hand_made_batch();
@@ -429,8 +432,8 @@ TEST(CriticTarget, MasksTerminalsOnly) {
 TEST(ActorCritic, RefusesAnEmptyEnsembleOrASubsetOutsideIt) {
   const auto message = [](int ensemble, int subset) {
     AgentConfig c = small_config();
-    c.critic_ensemble = ensemble;
-    c.critic_subset = subset;
+    c.method.set(kCriticEnsemble, ensemble);
+    c.method.set(kCriticSubset, subset);
     try {
       ActorCritic agent(kObs, kAct, c, 1);
     } catch (const std::invalid_argument& e) {
@@ -516,9 +519,9 @@ namespace {
 // An rlpd-sac agent with a small ensemble whose critics and actor are moved off their init.
 std::unique_ptr<RlpdSac> sac_agent(int members, int subset, float init_temperature = 0.7f) {
   AgentConfig c = recipe_config("rlpd-sac");
-  c.critic_ensemble = members;
-  c.critic_subset = subset;
-  c.init_temperature = init_temperature;
+  c.method.set(kCriticEnsemble, members);
+  c.method.set(kCriticSubset, subset);
+  c.method.set(kInitTemperature, init_temperature);
   auto a = std::make_unique<RlpdSac>(kObs, kAct, c, 17);
   perturb(*a);
   return a;
@@ -568,8 +571,8 @@ TEST(RlpdSac, TemperatureLossGradientAgreesWithFiniteDifferences) {
 // here from the actor's head alone, log π by its formula: Σ_i [log N(ε_i) − log σ_i − log(1 − a_i²)].
 TEST(RlpdSac, SoftTargetSamplesTheCurrentActorAtTheCurrentTemperature) {
   AgentConfig c = recipe_config("rlpd-sac");
-  c.critic_ensemble = c.critic_subset = 2;  // the minimum over both: no subset draw from the stream
-  c.init_temperature = 0.7f;
+  c.method.set(kCriticEnsemble, 2); c.method.set(kCriticSubset, 2);  // the minimum over both: no subset draw from the stream
+  c.method.set(kInitTemperature, 0.7f);
   RlpdSac a(kObs, kAct, c, 17);
   perturb(a);  // the actor moves away from the target actor's copy, which SAC must not read
   a.target_critics() = a.critics();
@@ -615,9 +618,9 @@ TEST(RlpdSac, SoftTargetSamplesTheCurrentActorAtTheCurrentTemperature) {
 // the flow profile): a third of the way.
 TEST(RlpdSac, TemperatureLearnsAtTheTemperatureRateNotTheActors) {
   AgentConfig c = recipe_config("rlpd-sac");
-  EXPECT_FLOAT_EQ(c.temperature_lr, 3e-4f) << "the recipe's published rate";
+  EXPECT_FLOAT_EQ(c.method.number(kTemperatureLr), 3e-4f) << "the recipe's published rate";
   c.actor_lr = 1e-4f;
-  c.critic_ensemble = c.critic_subset = 2;
+  c.method.set(kCriticEnsemble, 2); c.method.set(kCriticSubset, 2);
   RlpdSac a(kObs, kAct, c, 17);
   const double log_alpha0 = std::log(a.temperature());
   constexpr int kSteps = 200;
@@ -629,7 +632,7 @@ TEST(RlpdSac, TemperatureLearnsAtTheTemperatureRateNotTheActors) {
   for (int k = 0; k < kSteps; ++k) b.temperature_step(b.target_entropy() - 1.0f);
   EXPECT_NEAR(std::log(b.temperature()) - log_alpha0, kSteps * 3e-4, 0.02 * kSteps * 3e-4);
   // A config without a positive rate cannot make the agent (no default stands in for it).
-  c.temperature_lr = 0.0f;
+  c.method.set(kTemperatureLr, 0.0f);
   EXPECT_THROW(RlpdSac(kObs, kAct, c, 17), std::invalid_argument);
 }
 
@@ -638,9 +641,9 @@ TEST(RlpdSac, TemperatureLearnsAtTheTemperatureRateNotTheActors) {
 // per entry column by column; the target is the twin minimum at that action.
 TEST(Td3Bc, TargetPolicySmoothingAddsClippedNoiseToTheTargetAction) {
   AgentConfig c = recipe_config("td3-bc");
-  ASSERT_FLOAT_EQ(c.target_noise, 0.2f);
-  ASSERT_FLOAT_EQ(c.target_noise_clip, 0.5f);
-  ASSERT_EQ(c.critic_subset, c.critic_ensemble) << "the twin minimum draws no subset";
+  ASSERT_FLOAT_EQ(c.method.number(kTargetNoise), 0.2f);
+  ASSERT_FLOAT_EQ(c.method.number(kTargetNoiseClip), 0.5f);
+  ASSERT_EQ(c.method.integer(kCriticSubset), c.method.integer(kCriticEnsemble)) << "the twin minimum draws no subset";
   const Batch batch = hand_made_batch();
   const auto targets_of = [&](const AgentConfig& config, bool clip_noise) {
     auto a = perturbed_agent("td3-bc", config);
@@ -650,8 +653,8 @@ TEST(Td3Bc, TargetPolicySmoothingAddsClippedNoiseToTheTargetAction) {
     Mat act(kAct, kBatch);
     for (int b = 0; b < kBatch; ++b)
       for (int i = 0; i < kAct; ++i) {
-        float n = static_cast<float>(stream.normal(0.0, config.target_noise));
-        if (clip_noise) n = std::clamp(n, -config.target_noise_clip, config.target_noise_clip);
+        float n = static_cast<float>(stream.normal(0.0, config.method.number(kTargetNoise)));
+        if (clip_noise) n = std::clamp(n, -config.method.number(kTargetNoiseClip), config.method.number(kTargetNoiseClip));
         act(i, b) = std::clamp(mu(i, b) + n, -1.0f, 1.0f);
       }
     Mat sa(kObs + kAct, kBatch);
@@ -664,12 +667,12 @@ TEST(Td3Bc, TargetPolicySmoothingAddsClippedNoiseToTheTargetAction) {
   const auto [y, expected] = targets_of(c, true);
   EXPECT_TRUE(y.isApprox(expected, 1e-6f)) << y << "\n" << expected;
   AgentConfig plain = c;
-  plain.target_noise = 0.0f;
+  plain.method.set(kTargetNoise, 0.0f);
   EXPECT_FALSE(perturbed_agent("td3-bc", plain)->critic_targets(batch).isApprox(y, 1e-4f)) << "the noise acts";
   // Wide noise with a narrow clip: the clip, not the noise's spread, bounds the shift.
   AgentConfig wide = c;
-  wide.target_noise = 3.0f;
-  wide.target_noise_clip = 0.05f;
+  wide.method.set(kTargetNoise, 3.0f);
+  wide.method.set(kTargetNoiseClip, 0.05f);
   const auto [y_wide, clipped] = targets_of(wide, true);
   EXPECT_TRUE(y_wide.isApprox(clipped, 1e-6f));
   EXPECT_FALSE(y_wide.isApprox(targets_of(wide, false).second, 1e-4f));
@@ -693,9 +696,9 @@ TEST(Registry, PublishedBaselinesBuildTheirCodesNetworks) {
 // stream, stream_seed(init seed, Stream::kUpdate): recomputed here from that stream alone.
 TEST(CriticEnsembleTarget, TakesTheMinimumOverMMembersDrawnFromTheRunsOwnStream) {
   AgentConfig c = recipe_config("td3-bc");
-  c.critic_ensemble = 5;
-  c.critic_subset = 2;
-  c.target_noise = 0.0f;  // no smoothing, so the subset is the only draw
+  c.method.set(kCriticEnsemble, 5);
+  c.method.set(kCriticSubset, 2);
+  c.method.set(kTargetNoise, 0.0f);  // no smoothing, so the subset is the only draw
   auto a = find_algorithm("td3-bc").make(kObs, kAct, c, 17);
   const Batch batch = hand_made_batch();
   Rng stream(stream_seed(17, Stream::kUpdate));
@@ -755,8 +758,8 @@ TEST(Td3Bc, ImitationTermIsTheMeanSquaredErrorOverBatchAndActionEntries) {
 // one temperature step.
 TEST(RlpdSac, TakesUtdRatioCriticStepsPerActorStep) {
   AgentConfig c = recipe_config("rlpd-sac");
-  c.utd_ratio = 3;
-  c.critic_ensemble = 4;
+  c.method.set(kUtdRatio, 3);
+  c.method.set(kCriticEnsemble, 4);
   RlpdSac a(kObs, kAct, c, 17);
   const Batch batch = hand_made_batch();
   for (int step = 1; step <= 6; ++step) {

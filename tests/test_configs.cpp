@@ -8,7 +8,10 @@
 
 #include "envs/env.hpp"
 #include "envs/scenario_settings.hpp"
+#include "algos/rapid_rl_return.hpp"
 #include "algos/registry.hpp"
+#include "algos/rlpd_sac.hpp"
+#include "algos/td3_bc.hpp"
 #include "experiments/run/job.hpp"
 #include "experiments/run/run_config.hpp"
 
@@ -200,12 +203,12 @@ TEST(DefaultConfigs, OptionalKeysLeftOutOfAFileStayOutOfTheResolvedConfig) {
     }
   }
   const RunConfig neutral = run_config_from_json(default_config_json("merge"), "merge");
-  EXPECT_EQ(neutral.agent.bc_q_alpha, 0.0f);    // off
-  EXPECT_EQ(neutral.agent.return_horizon, 0);   // not given
+  EXPECT_EQ(neutral.agent.method.number(kBcQAlpha), 0.0f);    // off
+  EXPECT_EQ(neutral.agent.method.integer(kReturnHorizon), 0);   // not given
   const nlohmann::json given = resolve_config("merge", "short", {{"bc_q_alpha", 2.5}}, {{"return_horizon", 20}});
   EXPECT_EQ(given["bc_q_alpha"], 2.5);
   EXPECT_EQ(given["return_horizon"], 20);
-  EXPECT_EQ(run_config_from_json(given, "merge").agent.return_horizon, 20);
+  EXPECT_EQ(run_config_from_json(given, "merge").agent.method.integer(kReturnHorizon), 20);
   EXPECT_THROW(resolve_config("merge", "short", {{"return_horizon", 0}}, nlohmann::json()), std::invalid_argument);
   EXPECT_THROW(resolve_config("merge", "short", {{"bc_q_alpha", -1}}, nlohmann::json()), std::invalid_argument);
 }
@@ -225,7 +228,7 @@ TEST(ScenarioKeys, ShortFilesKeepTheBuiltInSettingsAndFlowFilesSetThePapersScale
     EXPECT_GE(flow.scenario.horizon, 1500);
     EXPECT_EQ(flow.scenario.reward, "flow");
     EXPECT_EQ(flow.scenario.network, "long");
-    EXPECT_FLOAT_EQ(flow.agent.epsilon, -0.15f);  // the paper's ε, unchanged in every scenario
+    EXPECT_FLOAT_EQ(flow.agent.method.number(kEpsilon), -0.15f);  // the paper's ε, unchanged in every scenario
   }
   EXPECT_THROW(check_profile("flow", "pendulum"), std::invalid_argument);
   EXPECT_THROW(check_profile("tiny", "merge"), std::invalid_argument);
@@ -259,23 +262,23 @@ TEST(ScenarioKeys, BadValuesAreRefusedNamingTheKey) {
 TEST(AlgorithmConfig, TheRecipeFillsOwnKeysAndOtherAlgorithmsKeysAreDropped) {
   const nlohmann::json plain = default_config_json("pendulum");
   const AgentConfig sac = check_config_fits("rlpd-sac", plain, "pendulum").agent;
-  EXPECT_EQ(sac.utd_ratio, 20);
-  EXPECT_EQ(sac.critic_ensemble, 10);
-  EXPECT_EQ(sac.critic_subset, 2);
-  EXPECT_EQ(sac.init_temperature, 1.0f);
-  EXPECT_EQ(sac.target_entropy_per_dim, -0.5f);
-  EXPECT_EQ(sac.policy_delay, 1);  // td3-bc's key: neutral
-  EXPECT_EQ(sac.temperature_lr, 3e-4f);  // rlpd's temp_lr, not the actor's rate
+  EXPECT_EQ(sac.method.integer(kUtdRatio), 20);
+  EXPECT_EQ(sac.method.integer(kCriticEnsemble), 10);
+  EXPECT_EQ(sac.method.integer(kCriticSubset), 2);
+  EXPECT_EQ(sac.method.number(kInitTemperature), 1.0f);
+  EXPECT_EQ(sac.method.number(kTargetEntropyPerDim), -0.5f);
+  EXPECT_EQ(sac.method.integer(kPolicyDelay), 1);  // td3-bc's key: neutral
+  EXPECT_EQ(sac.method.number(kTemperatureLr), 3e-4f);  // rlpd's temp_lr, not the actor's rate
   EXPECT_TRUE(sac.critic_layer_norm);
   EXPECT_EQ(sac.init, WeightInit::kXavier);
   const AgentConfig td3 = check_config_fits("td3-bc", plain, "pendulum").agent;
-  EXPECT_EQ(td3.critic_ensemble, 2);
-  EXPECT_EQ(td3.critic_subset, 2);
-  EXPECT_EQ(td3.policy_delay, 2);
-  EXPECT_EQ(td3.target_noise, 0.2f);
-  EXPECT_EQ(td3.target_noise_clip, 0.5f);
-  EXPECT_EQ(td3.bc_q_alpha, 2.5f);
-  EXPECT_EQ(td3.utd_ratio, 1);
+  EXPECT_EQ(td3.method.integer(kCriticEnsemble), 2);
+  EXPECT_EQ(td3.method.integer(kCriticSubset), 2);
+  EXPECT_EQ(td3.method.integer(kPolicyDelay), 2);
+  EXPECT_EQ(td3.method.number(kTargetNoise), 0.2f);
+  EXPECT_EQ(td3.method.number(kTargetNoiseClip), 0.5f);
+  EXPECT_EQ(td3.method.number(kBcQAlpha), 2.5f);
+  EXPECT_EQ(td3.method.integer(kUtdRatio), 1);
   EXPECT_FALSE(td3.critic_layer_norm);  // TD3_BC's critics have no LayerNorm
   EXPECT_EQ(td3.init, WeightInit::kPytorch);
   for (const char* algo : {"ddpg", "rlpd", "col-prior", "col-all", "rapid-rl"}) {
@@ -307,15 +310,15 @@ TEST(AlgorithmConfig, TheRecipeFillsOwnKeysAndOtherAlgorithmsKeysAreDropped) {
   shared["critic_ensemble"] = 4;
   shared["utd_ratio"] = 3;
   shared["bc_q_alpha"] = 1.5;
-  EXPECT_EQ(check_config_fits("rlpd-sac", shared, "pendulum").agent.critic_ensemble, 4);
-  EXPECT_EQ(check_config_fits("rlpd-sac", shared, "pendulum").agent.utd_ratio, 3);
-  EXPECT_EQ(check_config_fits("td3-bc", shared, "pendulum").agent.bc_q_alpha, 1.5f);
-  EXPECT_EQ(check_config_fits("td3-bc", shared, "pendulum").agent.utd_ratio, 1);
+  EXPECT_EQ(check_config_fits("rlpd-sac", shared, "pendulum").agent.method.integer(kCriticEnsemble), 4);
+  EXPECT_EQ(check_config_fits("rlpd-sac", shared, "pendulum").agent.method.integer(kUtdRatio), 3);
+  EXPECT_EQ(check_config_fits("td3-bc", shared, "pendulum").agent.method.number(kBcQAlpha), 1.5f);
+  EXPECT_EQ(check_config_fits("td3-bc", shared, "pendulum").agent.method.integer(kUtdRatio), 1);
   for (const char* algo : {"ddpg", "rlpd", "col-all", "rapid-rl"}) {
     const AgentConfig a = check_config_fits(algo, shared, "pendulum").agent;
-    EXPECT_EQ(a.critic_ensemble, 1) << algo;
-    EXPECT_EQ(a.utd_ratio, 1) << algo;
-    EXPECT_EQ(a.bc_q_alpha, find_algorithm(algo).reads("bc_q_alpha") ? 1.5f : 0.0f) << algo;
+    EXPECT_EQ(a.method.integer(kCriticEnsemble), 1) << algo;
+    EXPECT_EQ(a.method.integer(kUtdRatio), 1) << algo;
+    EXPECT_EQ(a.method.number(kBcQAlpha), find_algorithm(algo).reads("bc_q_alpha") ? 1.5f : 0.0f) << algo;
   }
   // The recipe's keys are not part of the job's config: with_recipe adds them.
   EXPECT_FALSE(plain.contains("utd_ratio"));

@@ -6,6 +6,8 @@
 
 #include <tuple>
 
+#include "algos/col_prior.hpp"
+#include "algos/rapid_rl_return.hpp"
 #include "algos/registry.hpp"
 #include "core/adam.hpp"
 #include "core/mlp.hpp"
@@ -78,12 +80,12 @@ TEST_P(UpdateAllocation, GradientUpdateAllocatesNothingAfterWarmUp) {
   config.gamma = 0.99f;
   config.tau = 0.005f;
   config.batch_size = 128;
-  config.lambda_bc = 1.0f;
-  config.epsilon = 0.0f;
-  config.bc_q_alpha = bc_q_alpha;
-  config.return_horizon = 20;
+  config.method.set(kLambdaBc, 1.0f);
+  config.method.set(kEpsilon, 0.0f);
+  config.method.set(kBcQAlpha, bc_q_alpha);
+  config.method.set(kReturnHorizon, 20);
   config = test::with_recipe(config, name);  // rlpd-sac's and td3-bc's ensembles and schedules
-  if (config.bc_q_alpha == 0.0f) config.bc_q_alpha = bc_q_alpha;
+  if (config.method.number(kBcQAlpha) == 0.0f) config.method.set(kBcQAlpha, bc_q_alpha);
   const Algorithm& algo = find_algorithm(name);
   auto agent = algo.make(obs_dim, act_dim, config, 5);
   const int window = algo.return_window(config);

@@ -5,12 +5,12 @@
 namespace rapid::bench {
 
 RunCost predict_run_cost(const std::string& scenario, const std::string& algo, const RunConfig& config, int horizon,
-                         double decision_s, double update_s) {
+                         double decision_s, double update_s, int steps_per_decision) {
   RunCost c;
   c.scenario = scenario;
   c.algo = algo;
   c.decisions = config.steps;
-  c.learning_steps = config.steps * config.agent.utd_ratio;
+  c.learning_steps = config.steps * steps_per_decision;
   // The trainer evaluates at 0, every eval_every decisions and at T, where one evaluation of
   // max(eval_episodes, final_eval_episodes) serves the curve and the final return
   // (experiments/run/trainer.cpp).

@@ -14,7 +14,7 @@ namespace rapid::bench {
 struct RunCost {
   std::string scenario, algo;
   long decisions = 0;       // training decisions: the budget T
-  long learning_steps = 0;  // T × utd_ratio
+  long learning_steps = 0;  // T × the algorithm's learning steps per decision (rlpd-sac's utd_ratio)
   // Evaluation decisions if every episode ran to the horizon (the curve's evaluations and the
   // final one); an upper bound, since a collision ends an episode early.
   long eval_decisions_max = 0;
@@ -22,7 +22,8 @@ struct RunCost {
   double eval_s_max = 0;  // evaluation decisions at the decision cost
 };
 
+// `steps_per_decision`: the agent's (UpdateSchedule, measured with update_s by bench_update).
 RunCost predict_run_cost(const std::string& scenario, const std::string& algo, const RunConfig& config, int horizon,
-                         double decision_s, double update_s);
+                         double decision_s, double update_s, int steps_per_decision);
 
 }  // namespace rapid::bench

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "algos/rapid_rl.hpp"
 #include "algos/registry.hpp"
 #include "envs/env.hpp"
 #include "experiments/bench/synthetic.hpp"
@@ -119,7 +120,7 @@ TrainBenchResult bench_train(const std::string& scenario, const RunConfig& defau
     auto agent = algo.make(obs_dim, act_dim, config.agent, stream_seed(7, Stream::kNetworkInit));
     const int return_window = algo.return_window(config.agent);
     ReplayBuffer prior;
-    if (algo.uses_prior) prior = synthetic_replay(obs_dim, act_dim, 4096, config.agent.epsilon, 21, return_window);
+    if (algo.uses_prior) prior = synthetic_replay(obs_dim, act_dim, 4096, config.agent.method.number(kEpsilon), 21, return_window);
     RecordingEnv recorder(*env, o.steps + 4L * env->horizon());
     TrainLog log;
     const auto t0 = Clock::now();

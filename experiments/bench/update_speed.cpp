@@ -3,9 +3,11 @@
 #include <omp.h>
 
 #include <map>
+#include <numeric>
 #include <memory>
 #include <tuple>
 
+#include "algos/rapid_rl.hpp"
 #include "algos/registry.hpp"
 #include "core/gemm_log.hpp"
 #include "core/mlp.hpp"
@@ -80,7 +82,7 @@ class OmpThreads {
 
 }  // namespace
 
-int update_cycle(const AgentConfig& c) { return c.utd_ratio * c.policy_delay; }
+int update_cycle(const UpdateSchedule& s) { return std::lcm(s.steps_per_decision, s.actor_every); }
 
 UpdateBenchResult bench_update(const std::string& algo, int obs_dim, int act_dim, const AgentConfig& config,
                                const UpdateBenchOptions& o) {
@@ -88,18 +90,19 @@ UpdateBenchResult bench_update(const std::string& algo, int obs_dim, int act_dim
   res.algo = algo;
   res.shape = "actor " + widths(obs_dim, config.actor_hidden, act_dim) + ", critic " +
               widths(obs_dim + act_dim, config.critic_hidden, 1) + ", batch " + std::to_string(config.batch_size);
-  res.critics = config.critic_ensemble;
-  res.cycle = update_cycle(config);
   // Per core: the plain GEMMs run on one thread, so the updates do too (an ensemble's members
   // would otherwise share the cores and the ratio would measure the cores, not the overhead).
   OmpThreads one_thread(1);
 
   const Algorithm& algorithm = find_algorithm(algo);
   auto agent = algorithm.make(obs_dim, act_dim, config, stream_seed(1, Stream::kNetworkInit));
+  res.critics = agent->critics().size();
+  res.cycle = update_cycle(agent->schedule());
+  res.steps_per_decision = agent->schedule().steps_per_decision;
   // Batch::ret is an input of the update like the reward, so its window (1 here) costs the update
   // nothing, and every algorithm is measured on the config as it is (return_horizon or not).
-  const ReplayBuffer prior = synthetic_replay(obs_dim, act_dim, 4096, config.epsilon, 11);
-  const ReplayBuffer online = synthetic_replay(obs_dim, act_dim, 4096, config.epsilon, 12);
+  const ReplayBuffer prior = synthetic_replay(obs_dim, act_dim, 4096, config.method.number(kEpsilon), 11);
+  const ReplayBuffer online = synthetic_replay(obs_dim, act_dim, 4096, config.method.number(kEpsilon), 12);
   SymmetricSampler sampler(algorithm.uses_prior ? &prior : nullptr, &online);
   // A few batches drawn up front and cycled: sampling is not part of the update.
   std::vector<Batch> batches(8);

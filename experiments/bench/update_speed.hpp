@@ -1,21 +1,21 @@
 // `rapid bench`, part 2: gradient updates of every algorithm at a scenario's default network
 // sizes, against Eigen's plain GEMM rate on exactly the matrix products the updates performed
 // (recorded by core/gemm_log.hpp while they ran). An "update" is one learning step: one call of
-// the agent's update(), utd_ratio of them per decision. Elementwise work (bias, LayerNorm, ReLU,
+// the agent's update(), schedule().steps_per_decision of them per decision. Elementwise work (bias, LayerNorm, ReLU,
 // tanh, Adam, Polyak, sampling the Gaussian) is not GEMM work and not counted.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "algos/agent_config.hpp"
+#include "algos/actor_critic.hpp"
 #include "core/gemm_log.hpp"
 
 namespace rapid::bench {
 
-// The learning steps one timed unit holds: utd_ratio × policy_delay, so that every unit has the
-// same products (each algorithm steps its actor once per policy_delay or utd_ratio of them).
-int update_cycle(const AgentConfig& config);
+// The learning steps one timed unit holds: the least common multiple of the steps per decision
+// and the steps per actor move, so that every unit has the same products.
+int update_cycle(const UpdateSchedule& schedule);
 
 struct UpdateBenchOptions {
   double budget_s = 2.0;  // per algorithm, updates and GEMMs together
@@ -28,6 +28,7 @@ struct UpdateBenchResult {
   std::string shape;            // e.g. "actor 18-128-128-2, critic 20-128-128-1, batch 128"
   int critics = 1;              // ensemble members
   int cycle = 1;                // learning steps per timed unit (update_cycle)
+  int steps_per_decision = 1;   // the algorithm's learning steps per decision (its schedule)
   double flops_per_update = 0;  // GEMM FLOPs of one update, averaged over a cycle
   double updates_per_s = 0;     // median over blocks
   double update_gflops = 0;     // flops_per_update × updates_per_s

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "algos/registry.hpp"
 #include "core/json_input.hpp"
 #include "core/printable.hpp"
 #include "envs/scenario_descriptor.hpp"
@@ -18,9 +19,6 @@ namespace rapid {
 
 namespace {
 
-constexpr Bounds kAny{};
-constexpr Bounds kPositive{.lo = 0, .lo_open = true};
-constexpr Bounds kNonNegative{.lo = 0};
 constexpr Bounds at_least(double x) { return {.lo = x}; }
 
 [[noreturn]] void reject(const std::string& key, const std::string& problem) {
@@ -130,7 +128,7 @@ ConfigKey optional_key(std::string name, T Holder::*field, Bounds bounds, T neut
 // networks, its reward variants beside the built-in ones).
 ConfigKey descriptor_choice_key(std::string name, std::string ScenarioSettings::*field, std::string type,
                                 std::string doc, std::vector<std::string> (*names)(const ScenarioDescriptor&)) {
-  ConfigKey k{name, ConfigPart::kScenario, std::move(type), kAny, std::move(doc), driving_only, {}, {}, {}, {}};
+  ConfigKey k{name, ConfigPart::kScenario, std::move(type), kAnyNumber, std::move(doc), driving_only, {}, {}, {}, {}};
   k.read = [name, field](const nlohmann::json& v, RunConfig& config) {
     if (!v.is_string() || v.get<std::string>().empty()) reject(name, "expects a name, got " + json_excerpt(v));
     config.scenario.*field = v.get<std::string>();
@@ -147,7 +145,7 @@ ConfigKey descriptor_choice_key(std::string name, std::string ScenarioSettings::
 // The agent's initialisation scheme by its name (core/mlp.hpp, WeightInit); absent: ddpg.
 ConfigKey init_key() {
   const std::string name = "init";
-  ConfigKey k{name, ConfigPart::kAgent, "one of " + comma_joined(weight_init_names()), kAny,
+  ConfigKey k{name, ConfigPart::kAgent, "one of " + comma_joined(weight_init_names()), kAnyNumber,
               "how every network's Linear layers start: ddpg (Lillicrap et al. 2016: U(±1/√fan_in), the last "
               "layer U(±3e-3); the paper's five), xavier (Glorot-uniform weights, zero biases: ikostrikov/rlpd's "
               "default_init; rlpd-sac's recipe), pytorch (torch.nn.Linear's default, U(±1/√fan_in) for weights and "
@@ -161,6 +159,48 @@ ConfigKey init_key() {
   k.write = [](const RunConfig& config) { return nlohmann::json(weight_init_name(config.agent.init)); };
   k.set_neutral = [](RunConfig& config) { config.agent.init = WeightInit::kDdpg; };
   return k;
+}
+
+// What a method key's doc line ends with: the recipes that set it, and the value a config that
+// leaves it out gets (when that value is one the key accepts; otherwise the doc says "not given").
+std::string method_key_suffix(const MethodKey& m) {
+  std::vector<std::string> recipes;
+  for (const Algorithm& a : algorithms())
+    for (const auto& [key, value] : a.recipe)
+      if (key == m.name) recipes.push_back(a.name + " " + value.dump());
+  std::string text;
+  if (!recipes.empty()) text += std::string(recipes.size() == 1 ? "; recipe: " : "; recipes: ") + comma_joined(recipes);
+  if (m.neutral && m.bounds.contains(*m.neutral)) {
+    const double v = *m.neutral;
+    text += "; absent: " + (v == std::trunc(v) ? std::to_string(static_cast<long long>(v)) : nlohmann::json(v).dump());
+  }
+  return text;
+}
+
+// A method key's row (algos/method_key.hpp): its value goes to AgentConfig::method.
+ConfigKey method_key_row(const MethodKey& m) {
+  const std::string type = m.type == MethodKey::kInteger ? type_name<int>() : type_name<float>();
+  ConfigKey k{m.name, ConfigPart::kAgent, type, m.bounds, std::string(m.doc) + method_key_suffix(m), nullptr, {}, {}, {}, {}};
+  // `m` is one of the algorithms' static declarations, so the row may hold on to it.
+  k.read = [&m](const nlohmann::json& v, RunConfig& config) {
+    const double x = m.type == MethodKey::kInteger ? typed<int>(m.name, v) : typed<float>(m.name, v);
+    check_bounds(m.name, m.bounds, x, v);
+    config.agent.method.set(m, x);
+  };
+  k.write = [&m](const RunConfig& config) {
+    return m.type == MethodKey::kInteger ? nlohmann::json(config.agent.method.integer(m))
+                                         : nlohmann::json(config.agent.method.number(m));
+  };
+  if (m.neutral) k.set_neutral = [&m](RunConfig& config) { config.agent.method.erase(m.name); };
+  return k;
+}
+
+// `keys` with a row for every algorithm's method key after the backbone's agent keys (after
+// noise_std), in the registry's order.
+std::vector<ConfigKey> with_method_keys(std::vector<ConfigKey> keys) {
+  auto at = std::find_if(keys.begin(), keys.end(), [](const ConfigKey& k) { return k.name == "noise_std"; }) + 1;
+  for (const MethodKey* m : method_keys()) at = keys.insert(at, method_key_row(*m)) + 1;
+  return keys;
 }
 
 }  // namespace
@@ -181,11 +221,11 @@ std::string ConfigKey::accepts() const {
 }
 
 const std::vector<ConfigKey>& config_keys() {
-  static const std::vector<ConfigKey> keys = {
+  static const std::vector<ConfigKey> keys = with_method_keys({
       key("actor_hidden", &AgentConfig::actor_hidden, kPositive, "hidden layer widths of the actor (tanh output)"),
       key("critic_hidden", &AgentConfig::critic_hidden, kPositive,
           "hidden layer widths of the critic, LayerNorm after each unless critic_layer_norm is false"),
-      optional_key("critic_layer_norm", &AgentConfig::critic_layer_norm, kAny, true,
+      optional_key("critic_layer_norm", &AgentConfig::critic_layer_norm, kAnyNumber, true,
                    "LayerNorm after each hidden layer of every critic (the paper's §III-B2 and ikostrikov/rlpd's "
                    "critic_layer_norm); td3-bc's recipe: false (sfujim/TD3_BC's critics have none); absent: true"),
       init_key(),
@@ -197,37 +237,6 @@ const std::vector<ConfigKey>& config_keys() {
           "batch size B; with a prior dataset B/2 prior + B/2 online"),
       key("noise_std", &AgentConfig::noise_std, kNonNegative,
           "std of the Gaussian exploration noise added to the [-1, 1] action"),
-      key("lambda_bc", &AgentConfig::lambda_bc, kNonNegative, "CoL's imitation weight λ_BC"),
-      key("epsilon", &AgentConfig::epsilon, kAny,
-          "RAPID-RL's reward threshold ε, in the scenario's reward units (docs/scenarios.md)"),
-      optional_key("bc_q_alpha", &AgentConfig::bc_q_alpha, kNonNegative, 0.0f,
-                   "TD3+BC's α: an algorithm with an imitation term scales its actor loss's Q term by "
-                   "λ = α / (mean absolute Q(s, π(s)) over the batch); absent or 0: off (no scaling)"),
-      optional_key("return_horizon", &AgentConfig::return_horizon, kPositive, 0,
-                   "RAPID-RL (return)'s window n: it imitates a transition by relu(Ḡ − ε), Ḡ the mean reward "
-                   "over the next n decisions of its episode; absent: not given, and rapid-rl-return refuses to run"),
-      optional_key("utd_ratio", &AgentConfig::utd_ratio, kPositive, 1,
-                   "learning steps per decision, each on a fresh batch (RLPD's update-to-data ratio); rlpd-sac's "
-                   "recipe: 20; absent: 1"),
-      optional_key("critic_ensemble", &AgentConfig::critic_ensemble, kPositive, 1,
-                   "number N of critics; the actor's Q term reads the first (TD3's Q1), rlpd-sac's their mean; "
-                   "recipes: td3-bc 2, rlpd-sac 10; absent: 1"),
-      optional_key("critic_subset", &AgentConfig::critic_subset, kPositive, 1,
-                   "target critics M ≤ N drawn afresh per step, the target taking their minimum (M = N: all, "
-                   "undrawn); recipes: td3-bc 2, rlpd-sac 2; absent: 1"),
-      optional_key("policy_delay", &AgentConfig::policy_delay, kPositive, 1,
-                   "td3-bc: the actor and the targets move once per this many critic steps; recipe: 2"),
-      optional_key("target_noise", &AgentConfig::target_noise, kNonNegative, 0.0f,
-                   "td3-bc: std of the Gaussian noise on the target action (target policy smoothing); recipe: 0.2"),
-      optional_key("target_noise_clip", &AgentConfig::target_noise_clip, kNonNegative, 0.0f,
-                   "td3-bc: the target noise clipped to ±this; recipe: 0.5"),
-      optional_key("init_temperature", &AgentConfig::init_temperature, kPositive, 0.0f,
-                   "rlpd-sac: the entropy temperature α at the start (learned from there); recipe: 1"),
-      optional_key("target_entropy_per_dim", &AgentConfig::target_entropy_per_dim, kAny, 0.0f,
-                   "rlpd-sac: the temperature's target entropy is this × the action dimension; recipe: -0.5"),
-      optional_key("temperature_lr", &AgentConfig::temperature_lr, kPositive, 0.0f,
-                   "rlpd-sac: Adam's learning rate for the temperature's log α; recipe: 3e-4 (ikostrikov/rlpd "
-                   "configs/sac_config.py temp_lr, not the actor's rate)"),
       key("steps", &RunConfig::steps, kPositive, "environment decisions of training"),
       key("warmup_steps", &RunConfig::warmup_steps, kNonNegative,
           "decisions of uniform-random actions, without updates, before learning starts; 0: none, π(s) + noise "
@@ -275,7 +284,7 @@ const std::vector<ConfigKey>& config_keys() {
           "lowest obstacle speed, m/s (each obstacle draws its own)", cut_in_only),
       key("obstacle_speed_max", &ScenarioSettings::obstacle_speed_max, setting_range::kObstacleSpeed,
           "highest obstacle speed, m/s", cut_in_only),
-  };
+  });
   return keys;
 }
 

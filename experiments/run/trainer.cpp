@@ -125,6 +125,7 @@ class TrainingRun {
                 return_window),
         sampler_(prior, &online_),
         first_update_(first_update_step(config, prior != nullptr)),
+        steps_per_decision_(agent.schedule().steps_per_decision),
         explore_rng_(stream_seed(run_seed, Stream::kExploration)),
         sample_rng_(stream_seed(run_seed, Stream::kSampling)),
         obs_(env.obs_dim()),
@@ -178,10 +179,10 @@ class TrainingRun {
     return r;
   }
 
-  // utd_ratio learning steps, each on a fresh batch (one per decision from first_update_ on; the
-  // paper's algorithms take one). A NaN or inf loss ends the run as diverged.
+  // The agent's learning steps of one decision, each on a fresh batch (from first_update_ on; the
+  // paper's algorithms take one, rlpd-sac utd_ratio). A NaN or inf loss ends the run as diverged.
   void learn(long done_steps) {
-    for (int k = 0; k < config_.agent.utd_ratio; ++k) {
+    for (int k = 0; k < steps_per_decision_; ++k) {
       const auto t0 = Clock::now();
       sampler_.sample(sample_rng_, batch_);
       const UpdateStats s = agent_.update(batch_);
@@ -258,6 +259,7 @@ class TrainingRun {
   ReplayBuffer online_;
   SymmetricSampler sampler_;
   const long first_update_;
+  const int steps_per_decision_;
   Batch batch_;
   Rng explore_rng_, sample_rng_;
   Vec obs_, next_obs_, action_;
