@@ -25,6 +25,7 @@
 #include "envs/env.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
+#include "tests/random_dataset.hpp"
 
 namespace rapid {
 namespace {
@@ -39,23 +40,6 @@ std::vector<BitsCase> every_case() {
   for (const std::string scenario : {"pendulum", "lane-drop"})
     for (const Algorithm& a : algorithms()) cases.push_back({scenario, a.name});
   return cases;
-}
-
-// A dataset of uniform-random actions on `scenario`, the same every time.
-void write_random_dataset(const std::string& scenario, int transitions, const std::string& path) {
-  const std::unique_ptr<Env> env = make_env(scenario);
-  DatasetBuilder builder(env->obs_dim(), env->act_dim());
-  Rng rng(3);
-  Vec obs(env->obs_dim()), next(env->obs_dim()), a(env->act_dim());
-  env->reset(1, obs);
-  for (int t = 0; t < transitions; ++t) {
-    for (Eigen::Index i = 0; i < a.size(); ++i) a[i] = static_cast<float>(rng.uniform(-1, 1));
-    const StepResult r = env->step(a, next);
-    builder.add(obs, a, r.reward, next, r.terminated, r.truncated);
-    obs = next;
-    if (r.terminated || r.truncated) env->reset(2 + t, obs);
-  }
-  write_dataset(path, builder.finish());
 }
 
 std::string digest_of_run(const std::string& job) {
@@ -75,7 +59,7 @@ TEST_P(RecordBits, TheRecordAndCheckpointAreTheDigestsOnFile) {
   rapid::testing::ScratchDir dir;
   std::string args = "run --scenario " + scenario + " --algo " + algo + " --seed 1 --out " + dir.file("job");
   if (a.uses_prior) {
-    write_random_dataset(scenario, scenario == "pendulum" ? 600 : 200, dir.file("prior.h5"));
+    write_dataset(dir.file("prior.h5"), test::random_dataset(scenario, scenario == "pendulum" ? 600 : 200));
     args += " --dataset " + dir.file("prior.h5");
   }
   args += scenario == "pendulum" ? " --set steps=600 --set warmup_steps=100 --set eval_every=300 --set eval_episodes=1"

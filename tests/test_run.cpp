@@ -18,8 +18,11 @@
 #include "core/mlp.hpp"
 #include "envs/env.hpp"
 #include "envs/pendulum.hpp"
+#include "experiments/cli/commands.hpp"
+#include "experiments/run/run_config.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
+#include "tests/random_dataset.hpp"
 
 using namespace rapid;
 using test::rapid_cli;
@@ -245,6 +248,45 @@ TEST(RapidRun, BadInputExitsTwoWithOneLineAndWritesNothing) {
   }
 }
 
+// `rapid run` resolves its config once: the profile's file, the grid, --set and the recipe merge as
+// JSON, and one parse makes the typed config the run uses (run_job takes it from the job spec).
+TEST(RapidRun, ParsesItsConfigOnce) {
+  rapid::testing::ScratchDir dir;
+  CLI::App app;
+  const Command run = add_run_command(app);
+  app.parse("run --algo ddpg --seed 3 " + kShort + "--out " + dir.file("job"), /*program_name_included=*/false);
+  const long before = run_config_parses();
+  ASSERT_EQ(run.run(), 0);
+  EXPECT_EQ(run_config_parses() - before, 1);
+  EXPECT_EQ(read_record(dir.file("job"))["status"], "ok");
+}
+
+// --print-config shows every key the run reads with its value and the layer it came from, and
+// runs nothing.
+TEST(RapidRun, PrintConfigNamesWhereEachKeyCameFrom) {
+  rapid::testing::ScratchDir dir;
+  const std::string grid = dir.file("g.json");
+  write_file_atomic(grid, R"({"name": "g", "scenarios": ["pendulum"], "datasets": ["medium"], "algos": ["rlpd-sac"],
+                      "seeds": [0], "algo_config": {"pendulum": {"rlpd-sac": {"critic_subset": 3}}}})");
+  write_dataset(dir.file("d.h5"), random_pendulum_dataset(300));
+  const auto r = rapid_cli("run --scenario pendulum --algo rlpd-sac --seed 0 --dataset " + dir.file("d.h5") + " --grid " + grid +
+                               " --set steps=500 --print-config --out " + dir.file("job"),
+                           /*with_stderr=*/true);
+  EXPECT_EQ(r.exit_code, 0) << r.text;
+  const auto line_of = [&](const std::string& key) {
+    const auto at = r.text.find("\n" + key + " ");
+    return at == std::string::npos ? std::string() : r.text.substr(at + 1, r.text.find('\n', at + 1) - at - 1);
+  };
+  EXPECT_NE(line_of("steps").find("500  "), std::string::npos) << r.text;
+  EXPECT_TRUE(line_of("steps").ends_with("--set")) << r.text;
+  EXPECT_TRUE(line_of("critic_subset").ends_with("grid")) << r.text;
+  EXPECT_TRUE(line_of("utd_ratio").ends_with("recipe of rlpd-sac")) << r.text;
+  EXPECT_TRUE(line_of("actor_lr").ends_with("experiments/configs/short/pendulum.json")) << r.text;
+  EXPECT_EQ(line_of("epsilon"), "") << "rlpd-sac does not read ε: " << r.text;
+  EXPECT_EQ(line_of("policy_delay"), "") << "nor td3-bc's delay";
+  EXPECT_FALSE(std::filesystem::exists(dir.file("job")));
+}
+
 // --out must be a folder rapid can write: otherwise exit 2 naming the option, before any work.
 TEST(RapidRun, AnUnusableOutFolderIsBadInput) {
   rapid::testing::ScratchDir dir;
@@ -412,20 +454,8 @@ TEST(RapidRun, ThePublishedBaselinesRunOnEveryDrivingScenario) {
   ::setenv("OMP_NUM_THREADS", "1", 1);
   rapid::testing::ScratchDir dir;
   for (const std::string scenario : {"lane-drop", "cut-in", "merge"}) {
-    const std::unique_ptr<Env> env = make_env(scenario);
-    DatasetBuilder builder(env->obs_dim(), env->act_dim());
-    Rng rng(3);
-    Vec obs(env->obs_dim()), next(env->obs_dim()), a(env->act_dim());
-    env->reset(1, obs);
-    for (int t = 0; t < 200; ++t) {
-      for (Eigen::Index i = 0; i < a.size(); ++i) a[i] = static_cast<float>(rng.uniform(-1, 1));
-      const StepResult r = env->step(a, next);
-      builder.add(obs, a, r.reward, next, r.terminated, r.truncated);
-      obs = next;
-      if (r.terminated || r.truncated) env->reset(2 + t, obs);
-    }
     const std::string data = dir.file(scenario + ".h5");
-    write_dataset(data, builder.finish());
+    write_dataset(data, test::random_dataset(scenario, 200));
     for (const std::string algo : {"rlpd-sac", "td3-bc"}) {
       const std::string job = dir.file(scenario + "-" + algo);
       const auto out = rapid_cli("run --scenario " + scenario + " --algo " + algo + " --dataset " + data +

@@ -17,8 +17,9 @@ void load_grid_scenarios(const std::string& grid_path) {
   }
 }
 
-nlohmann::json resolve_cli_config(const std::string& scenario, const std::string& profile, const std::string& grid_path,
-                                  const nlohmann::json& set_overrides, const std::string& algo) {
+std::vector<ConfigLayer> cli_config_layers(const std::string& scenario, const std::string& profile,
+                                           const std::string& grid_path, const nlohmann::json& set_overrides,
+                                           const std::string& algo) {
   std::string chosen = profile.empty() ? kDefaultProfile : profile;
   nlohmann::json overrides;
   if (!grid_path.empty()) {
@@ -33,7 +34,17 @@ nlohmann::json resolve_cli_config(const std::string& scenario, const std::string
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string("--profile: ") + e.what());
   }
-  return resolve_config(scenario, chosen, overrides, set_overrides);
+  std::vector<ConfigLayer> layers = default_config_layers(scenario, chosen);
+  if (overrides.is_object()) layers.push_back({"grid", overrides});
+  if (set_overrides.is_object()) layers.push_back({"--set", set_overrides});
+  return layers;
+}
+
+nlohmann::json resolve_cli_config(const std::string& scenario, const std::string& profile, const std::string& grid_path,
+                                  const nlohmann::json& set_overrides) {
+  const nlohmann::json config = merge_layers(cli_config_layers(scenario, profile, grid_path, set_overrides), scenario);
+  run_config_from_json(config, scenario);  // validates the whole
+  return config;
 }
 
 }  // namespace rapid

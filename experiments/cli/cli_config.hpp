@@ -4,6 +4,9 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
+
+#include "experiments/run/run_config.hpp"
 
 namespace rapid {
 
@@ -14,9 +17,15 @@ namespace rapid {
 // FIELD: problem", as every command says it.
 void load_grid_scenarios(const std::string& grid_path);
 
-// `algo`: a run's algorithm, whose "algo_config" overrides the grid gives it; empty for a dataset
-// build, which reads the scenario's config alone.
+// The config's layers, lowest first: the scenario's in the profile (default_config_layers), the
+// grid's overrides ("grid"), --set ("--set"). `algo`: a run's algorithm, whose "algo_config"
+// overrides the grid gives it; empty for a dataset build, which reads the scenario's config alone.
+std::vector<ConfigLayer> cli_config_layers(const std::string& scenario, const std::string& profile,
+                                           const std::string& grid_path, const nlohmann::json& set_overrides,
+                                           const std::string& algo = "");
+
+// Those layers resolved into one config (resolve_config) for a dataset build.
 nlohmann::json resolve_cli_config(const std::string& scenario, const std::string& profile, const std::string& grid_path,
-                                  const nlohmann::json& set_overrides, const std::string& algo = "");
+                                  const nlohmann::json& set_overrides);
 
 }  // namespace rapid

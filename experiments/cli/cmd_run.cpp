@@ -1,5 +1,6 @@
 // `rapid run`: train one job (one seed of one table cell) and write its run record (docs/design.md §Jobs, §Records).
 #include <filesystem>
+#include <iostream>
 
 #include "algos/registry.hpp"
 #include "core/dataset.hpp"
@@ -24,7 +25,7 @@ namespace {
 struct RunOptions {
   std::string scenario, algo, dataset, dataset_dir = "datasets", grid, out, profile;
   std::uint64_t seed = 0;
-  bool force = false;
+  bool force = false, print_config = false;
   std::vector<std::string> sets;
   std::vector<long> checkpoint_at;
 };
@@ -77,13 +78,20 @@ int run_command(const RunOptions& o) {
     check_prior_dataset(spec.dataset_path, o.scenario, o.algo);
   }
   nlohmann::json sets = nlohmann::json::object();
+  ResolvedConfig resolved;
   try {
     for (const auto& s : o.sets) parse_set_option(s, sets);
-    spec.config = resolve_cli_config(o.scenario, o.profile, o.grid, sets, o.algo);
-    check_scenario_runs(o.scenario, check_config_fits(o.algo, spec.config, o.scenario).scenario);
+    resolved = resolve_job_config(o.scenario, o.algo, cli_config_layers(o.scenario, o.profile, o.grid, sets, o.algo));
+    check_scenario_runs(o.scenario, resolved.run.scenario);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  if (o.print_config) {
+    std::cout << config_origins_text(resolved);
+    return 0;
+  }
+  spec.config = std::move(resolved.config);
+  spec.run = std::move(resolved.run);
   // Last: nothing is written before every input is checked. A folder a run wrote holds its
   // record or, if that run was killed first, its lock file.
   refuse_foreign_folder(o.out, "--out", {{job_files::kRecord, is_run_record_file}, job_files::kLock}, "a run folder",
@@ -112,6 +120,9 @@ Command add_run_command(CLI::App& parent) {
   sub->add_option("--set", o->sets, "override a config key: --set key=value (repeatable)");
   sub->add_option("--out", o->out, "job folder for record.json, actor.ckpt and progress.json")->required();
   sub->add_flag("--force", o->force, "write into an --out folder that holds files but no run record");
+  sub->add_flag("--print-config", o->print_config,
+                "print the config this run would use, one key a line with its value and where it came from (the "
+                "profile's file, the grid, --set, the algorithm's recipe), and run nothing");
   sub->add_option("--checkpoint-at", o->checkpoint_at, "also save the actor after these steps")->group("");
   return {sub, [o] { return run_command(*o); }};
 }

@@ -2,6 +2,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -42,6 +43,39 @@ RunConfig check_config_fits(const std::string& algo, const nlohmann::json& confi
   RunConfig parsed = run_config_from_json(with_recipe(config, algo), scenario);
   find_algorithm(algo).check(parsed.agent);
   return parsed;
+}
+
+ResolvedConfig resolve_job_config(const std::string& scenario, const std::string& algo,
+                                  const std::vector<ConfigLayer>& layers) {
+  ResolvedConfig r;
+  std::map<std::string, std::string> origin;
+  r.config = merge_layers(layers, scenario, &origin);
+  const nlohmann::json fills = recipe_fills(r.config, algo);
+  for (const auto& [key, value] : fills.items()) origin[key] = "recipe of " + algo;
+  const nlohmann::json runs = with_recipe(r.config, algo);
+  r.run = run_config_from_json(runs, scenario);  // the one parse
+  find_algorithm(algo).check(r.run.agent);
+  for (const ConfigKey& key : config_keys()) {
+    if (!key.applies_to(scenario) || !find_algorithm(algo).reads(key.name)) continue;
+    if (runs.contains(key.name)) r.origins.push_back({key.name, runs.at(key.name), origin.at(key.name)});
+    else r.origins.push_back({key.name, key.write(r.run), key.optional() ? "absent: neutral" : "the scenario's built-in value"});
+  }
+  return r;
+}
+
+std::string config_origins_text(const ResolvedConfig& resolved) {
+  std::size_t key_width = 0, value_width = 0;
+  for (const KeyOrigin& k : resolved.origins) {
+    key_width = std::max(key_width, k.key.size());
+    value_width = std::max(value_width, k.value.dump().size());
+  }
+  std::string text;
+  for (const KeyOrigin& k : resolved.origins) {
+    const std::string value = k.value.dump();
+    text += k.key + std::string(key_width + 2 - k.key.size(), ' ') + value +
+            std::string(value_width + 2 - value.size(), ' ') + k.origin + "\n";
+  }
+  return text;
 }
 
 namespace {

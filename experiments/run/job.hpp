@@ -4,6 +4,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,7 +29,10 @@ struct JobSpec {
   std::string dataset;       // the name in the table ("initial", …) or a path; empty for ddpg
   std::string dataset_path;  // the file it resolves to; empty for ddpg
   std::uint64_t seed = 0;
-  nlohmann::json config;     // fully resolved (run_config.hpp)
+  nlohmann::json config;     // fully resolved (run_config.hpp): what the record holds and the hash covers
+  // `config` as the algorithm runs it (with_recipe), when whoever resolved it parsed it already
+  // (resolve_job_config); run_job parses `config` itself otherwise (a dataset build's reference).
+  std::optional<RunConfig> run;
   std::string out_dir;
   std::vector<long> checkpoint_steps;  // extra actor checkpoints (reference agents)
 };
@@ -48,6 +52,30 @@ nlohmann::json with_recipe(const nlohmann::json& config, const std::string& algo
 nlohmann::json recipe_fills(const nlohmann::json& config, const std::string& algo);
 
 RunConfig check_config_fits(const std::string& algo, const nlohmann::json& config, const std::string& scenario);
+
+// A key of a run's config as resolved: its value and the layer it came from.
+struct KeyOrigin {
+  std::string key;
+  nlohmann::json value;
+  std::string origin;  // a layer's origin, "recipe of A", or "absent: neutral" (an optional key no layer gives)
+};
+
+// A job's config resolved once, by layers: the scenario's config in its profile
+// (default_config_layers), the grid's overrides, `--set`; then the algorithm's recipe under them
+// and the keys it does not read dropped (with_recipe), parsed once.
+struct ResolvedConfig {
+  nlohmann::json config;  // JobSpec::config: the layers merged, recorded and hashed
+  RunConfig run;          // JobSpec::run: what the run uses
+  std::vector<KeyOrigin> origins;  // every key the run reads, in the key table's order
+};
+
+// Each layer's keys are checked as apply_overrides checks them (errors start with the layer's
+// origin: "grid: …", "--set: …"), the whole when it is parsed; throws std::invalid_argument.
+ResolvedConfig resolve_job_config(const std::string& scenario, const std::string& algo,
+                                  const std::vector<ConfigLayer>& layers);
+
+// The origins as text, one key a line: key, value, where it came from (`rapid run --print-config`).
+std::string config_origins_text(const ResolvedConfig& resolved);
 
 // The hash that says whether a finished record still answers this job: the cell, the resolved
 // config and the dataset file's content. Code revision is deliberately not part of it.

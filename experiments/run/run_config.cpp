@@ -1,6 +1,7 @@
 #include "experiments/run/run_config.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
@@ -68,27 +69,31 @@ nlohmann::json shared_profile_config(const std::string& profile) {
 }
 
 namespace {
-// A scenario file's config in `profile`: the profile's shared keys, the descriptor's settings as
-// the scenario keys, then the descriptor's keys for that profile.
-nlohmann::json file_scenario_config(const std::string& scenario, const std::string& profile) {
+// A scenario file's layers in `profile`: the profile's shared keys, the descriptor's settings as
+// the scenario keys, then the descriptor's keys for that profile (checked here, as a whole).
+std::vector<ConfigLayer> file_scenario_layers(const std::string& scenario, const std::string& profile) {
   check_profile(profile, scenario);
   const auto descriptor = scenario_descriptor(scenario);
-  nlohmann::json config = shared_profile_config(profile);
+  ConfigLayer shared{"profile " + profile + " (the keys its built-in scenarios share)", shared_profile_config(profile)};
+  ConfigLayer settings{"scenario file " + scenario, nlohmann::json::object()};
   RunConfig with_defaults;
   with_defaults.scenario = descriptor->defaults;
   for (const ConfigKey& key : config_keys())
-    if (key.part == ConfigPart::kScenario && key.applies_to(scenario)) config[key.name] = key.write(with_defaults);
-  const std::string origin = "scenario file " + scenario + ": profiles." + profile;
-  apply_overrides(config, descriptor->profiles.at(profile), scenario, origin);
+    if (key.part == ConfigPart::kScenario && key.applies_to(scenario))
+      settings.values[key.name] = key.write(with_defaults);
+  ConfigLayer own{"scenario file " + scenario + ": profiles." + profile, descriptor->profiles.at(profile)};
+  nlohmann::json config = shared.values;
+  config.update(settings.values);
+  apply_overrides(config, own.values, scenario, own.origin);
   for (const ConfigKey& key : config_keys())
     if (!key.optional() && key.applies_to(scenario) && !config.contains(key.name))
-      throw std::invalid_argument(origin + ": must give '" + key.name + "' (the profile's scenarios differ in it)");
-  return config;
+      throw std::invalid_argument(own.origin + ": must give '" + key.name + "' (the profile's scenarios differ in it)");
+  return {std::move(shared), std::move(settings), std::move(own)};
 }
 }  // namespace
 
-nlohmann::json default_config_json(const std::string& scenario, const std::string& profile) {
-  if (is_scenario_from_file(scenario)) return file_scenario_config(scenario, profile);
+std::vector<ConfigLayer> default_config_layers(const std::string& scenario, const std::string& profile) {
+  if (is_scenario_from_file(scenario)) return file_scenario_layers(scenario, profile);
   const std::string path = config_path(scenario, profile);
   nlohmann::json j;
   try {
@@ -97,7 +102,13 @@ nlohmann::json default_config_json(const std::string& scenario, const std::strin
     throw std::runtime_error("config file " + path + ": " + e.what());
   }
   if (!j.is_object()) throw std::runtime_error("config file " + path + ": not a JSON object");
-  return j;
+  return {{"config file " + path, std::move(j)}};
+}
+
+nlohmann::json default_config_json(const std::string& scenario, const std::string& profile) {
+  nlohmann::json config = nlohmann::json::object();
+  for (const ConfigLayer& layer : default_config_layers(scenario, profile)) config.update(layer.values);
+  return config;
 }
 
 namespace {
@@ -129,6 +140,18 @@ void apply_overrides(nlohmann::json& config, const nlohmann::json& overrides, co
   }
 }
 
+nlohmann::json merge_layers(const std::vector<ConfigLayer>& layers, const std::string& scenario,
+                            std::map<std::string, std::string>* origin) {
+  nlohmann::json config = nlohmann::json::object();
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    if (i == 0) config = layers[i].values;
+    else apply_overrides(config, layers[i].values, scenario, layers[i].origin);
+    if (origin)
+      for (const auto& [key, value] : layers[i].values.items()) (*origin)[key] = layers[i].origin;
+  }
+  return config;
+}
+
 void parse_set_option(const std::string& assignment, nlohmann::json& overrides) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
@@ -151,8 +174,15 @@ nlohmann::json resolve_config(const std::string& scenario, const std::string& pr
   return config;
 }
 
+namespace {
+std::atomic<long> parses{0};
+}  // namespace
+
+long run_config_parses() { return parses.load(); }
+
 RunConfig run_config_from_json(const nlohmann::json& j, const std::string& scenario,
                                const std::vector<ConfigKey>& keys) {
+  ++parses;
   if (!j.is_object()) throw std::invalid_argument("config must be a JSON object");
   for (const ConfigKey& key : keys)
     if (key.part != ConfigPart::kScenario && !key.optional() && key.applies_to(scenario) && !j.contains(key.name))

@@ -4,6 +4,7 @@
 // the run record and hashed.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -25,9 +26,20 @@ inline constexpr const char* kDefaultProfile = "short";
 // Throws std::invalid_argument naming `profile` unless it is a profile with a file for `scenario`.
 void check_profile(const std::string& profile, const std::string& scenario);
 
-// The config file of `scenario` in `profile` as it is (throws std::runtime_error if it is missing
-// or not a JSON object; its keys are checked when it is parsed). For a scenario file (.json), the
+// One layer of a config: where its values come from (what an error or `rapid run --print-config`
+// names) and the keys it sets.
+struct ConfigLayer {
+  std::string origin;
+  nlohmann::json values;  // an object
+};
+
+// The layers of `scenario`'s config in `profile`, lowest first: a built-in scenario's file
+// (experiments/configs/<profile>/<scenario>.json: throws std::runtime_error if it is missing or
+// not a JSON object; its keys are checked when it is parsed); for a scenario file (.json), the
 // profile's shared keys, the descriptor's settings, then the descriptor's "profiles" entry.
+std::vector<ConfigLayer> default_config_layers(const std::string& scenario, const std::string& profile);
+
+// Those layers merged: the config of `scenario` in `profile` before any override.
 nlohmann::json default_config_json(const std::string& scenario, const std::string& profile = kDefaultProfile);
 
 // The agent and schedule keys on which every built-in driving scenario's config of `profile`
@@ -38,6 +50,11 @@ nlohmann::json shared_profile_config(const std::string& profile);
 // key of that scenario with a valid value. Throws std::invalid_argument "ORIGIN: …" naming the key.
 void apply_overrides(nlohmann::json& config, const nlohmann::json& overrides, const std::string& scenario,
                      const std::string& origin, const std::vector<ConfigKey>& keys = config_keys());
+
+// `layers` merged into one config of `scenario`: the first as it is, each later one applied with
+// apply_overrides (its origin names it in an error). `origin`, when given, gets each key's layer.
+nlohmann::json merge_layers(const std::vector<ConfigLayer>& layers, const std::string& scenario,
+                            std::map<std::string, std::string>* origin = nullptr);
 
 // Parses "key=value" (value as JSON, else as a plain string) into `overrides`. Throws
 // std::invalid_argument for a malformed assignment or a key `overrides` already holds.
@@ -54,6 +71,10 @@ nlohmann::json resolve_config(const std::string& scenario, const std::string& pr
 // std::invalid_argument naming the key.
 RunConfig run_config_from_json(const nlohmann::json& j, const std::string& scenario,
                                const std::vector<ConfigKey>& keys = config_keys());
+
+// How many configs this process has parsed with run_config_from_json: a test's way to see that a
+// run resolves its config once.
+long run_config_parses();
 
 // The environment a run of `scenario` with `config` trains and evaluates in.
 std::unique_ptr<Env> make_run_env(const std::string& scenario, const RunConfig& config);

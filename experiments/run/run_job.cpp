@@ -40,7 +40,7 @@ ReplayBuffer load_prior(const JobSpec& spec, const Env& env, const Algorithm& al
 
 int run_job(const JobSpec& spec) {
   // The algorithm's recipe fills the keys the config leaves out (job.hpp); the record says which.
-  const RunConfig config = check_config_fits(spec.algo, spec.config, spec.scenario);
+  const RunConfig config = spec.run ? *spec.run : check_config_fits(spec.algo, spec.config, spec.scenario);
   std::unique_ptr<Env> env = make_run_env(spec.scenario, config);
   const Algorithm& algo = find_algorithm(spec.algo);
   check_dataset_fits(spec.algo, !spec.dataset_path.empty());
