@@ -94,7 +94,7 @@ std::vector<RankedMethod> best_first(std::vector<RankedMethod> methods) {
 // sides. `row_index` seeds its bootstrap, so every row draws its own replicates.
 std::optional<RowAgreement> row_agreement(const OurRow& row, std::size_t row_index, std::vector<double>& paper_means,
                                           Strata& our_finals) {
-  RowAgreement out{row.scenario, row.dataset, {}, {}, 0.0, std::nullopt, false};
+  RowAgreement out{row.scenario, row.dataset, {}, {}, {}, {}, {}, 0.0, std::nullopt, false};
   paper_means.clear();
   our_finals.clear();
   for (const auto& [algo, finals] : row.finals) {
@@ -118,6 +118,15 @@ std::optional<RowAgreement> row_agreement(const OurRow& row, std::size_t row_ind
     return kendall_tau_b(paper, means);
   };
   out.tau_ci = stratified_bootstrap_ci(our_finals, tau_of, BootstrapOptions{2000, 0x7a5u + row_index, 0.95});
+  for (const RankedMethod& m : out.paper) out.names.push_back(m.algo);
+  std::sort(out.names.begin(), out.names.end());
+  const auto mean_of = [](const std::vector<RankedMethod>& methods, const std::string& algo) {
+    return std::find_if(methods.begin(), methods.end(), [&](const RankedMethod& m) { return m.algo == algo; })->mean;
+  };
+  for (const std::string& name : out.names) {
+    out.paper_by_name.push_back(mean_of(out.paper, name));
+    out.ours_by_name.push_back(mean_of(out.ours, name));
+  }
   out.paper = best_first(out.paper);
   out.ours = best_first(out.ours);
   out.same_best = out.paper.front().algo == out.ours.front().algo;
@@ -129,24 +138,13 @@ std::optional<RowAgreement> row_agreement(const OurRow& row, std::size_t row_ind
 // scenario (which share DDPG's cell, and much else) stay as dependent as they are. Fisher–Yates
 // with the generator's raw output, so the draws are the same on every standard library.
 double permutation_p_value(const std::vector<RowAgreement>& rows, double observed) {
-  // Per row, the paper's and our means with the methods in name order; rows of a scenario with
-  // the same methods form a group and share a permutation.
-  const auto mean_of = [](const std::vector<RankedMethod>& methods, const std::string& algo) {
-    return std::find_if(methods.begin(), methods.end(), [&](const RankedMethod& m) { return m.algo == algo; })->mean;
-  };
-  std::vector<std::vector<double>> paper(rows.size()), ours(rows.size()), shuffled(rows.size());
+  // Rows of a scenario with the same methods form a group and share a permutation.
+  std::vector<std::vector<double>> shuffled(rows.size());
   std::vector<std::size_t> group(rows.size());
   std::vector<std::pair<std::string, std::vector<std::string>>> groups;  // (scenario, method names)
   for (std::size_t r = 0; r < rows.size(); ++r) {
-    std::vector<std::string> names;
-    for (const RankedMethod& m : rows[r].paper) names.push_back(m.algo);
-    std::sort(names.begin(), names.end());
-    for (const std::string& name : names) {
-      paper[r].push_back(mean_of(rows[r].paper, name));
-      ours[r].push_back(mean_of(rows[r].ours, name));
-    }
-    shuffled[r].resize(names.size());
-    const std::pair<std::string, std::vector<std::string>> key{rows[r].scenario, names};
+    shuffled[r].resize(rows[r].names.size());
+    const std::pair<std::string, std::vector<std::string>> key{rows[r].scenario, rows[r].names};
     group[r] = static_cast<std::size_t>(std::find(groups.begin(), groups.end(), key) - groups.begin());
     if (group[r] == groups.size()) groups.push_back(key);
   }
@@ -162,22 +160,27 @@ double permutation_p_value(const std::vector<RowAgreement>& rows, double observe
     }
     double total = 0;
     for (std::size_t r = 0; r < rows.size(); ++r) {
-      for (std::size_t i = 0; i < ours[r].size(); ++i) shuffled[r][i] = ours[r][permutation[group[r]][i]];
-      total += kendall_tau_b(paper[r], shuffled[r]);
+      const std::vector<double>& ours = rows[r].ours_by_name;
+      for (std::size_t i = 0; i < ours.size(); ++i) shuffled[r][i] = ours[permutation[group[r]][i]];
+      total += kendall_tau_b(rows[r].paper_by_name, shuffled[r]);
     }
     if (total / static_cast<double>(rows.size()) >= observed - 1e-12) ++at_least;
   }
   return (1.0 + at_least) / (1.0 + kPermutations);
 }
 
-std::string order_text(const std::vector<RankedMethod>& methods, const std::string& separator) {
+std::string order_text(const std::vector<RankedMethod>& methods) {
   std::string out;
-  for (const RankedMethod& m : methods)
-    out += (out.empty() ? "" : separator) + algo_display_name(m.algo) + " " + fixed(m.mean, 1);
+  for (const RankedMethod& m : methods) out += (out.empty() ? "" : " > ") + algo_display_name(m.algo) + " " + fixed(m.mean, 1);
   return out;
 }
 
 }  // namespace
+
+RowTexts row_texts(const RowAgreement& row) {
+  return {order_text(row.paper), order_text(row.ours),
+          row.tau_ci ? "[" + fixed(row.tau_ci->lo, 2) + ", " + fixed(row.tau_ci->hi, 2) + "]" : "—"};
+}
 
 std::optional<PaperAgreement> paper_agreement(const std::vector<OurRow>& rows) {
   PaperAgreement out;
@@ -222,11 +225,12 @@ std::string paper_agreement_markdown(const nlohmann::json& summary) {
   out << "\n## The paper beside us\n\n" << paper_agreement_preamble() << "\n\n"
       << "| Scenario | Dataset | The paper's order | Our order | τ | 95% interval | Same best |\n"
       << "|---|---|---|---|---:|---:|---|\n";
-  for (const RowAgreement& r : agreement->rows)
+  for (const RowAgreement& r : agreement->rows) {
+    const RowTexts text = row_texts(r);
     out << "| " << scenario_display_name(r.scenario) << " | " << dataset_display_name(r.dataset) << " | "
-        << order_text(r.paper, " > ") << " | " << order_text(r.ours, " > ") << " | " << fixed(r.tau, 2) << " | "
-        << (r.tau_ci ? "[" + fixed(r.tau_ci->lo, 2) + ", " + fixed(r.tau_ci->hi, 2) + "]" : "—") << " | "
-        << (r.same_best ? "yes" : "no") << " |\n";
+        << text.paper_order << " | " << text.our_order << " | " << fixed(r.tau, 2) << " | " << text.tau_interval
+        << " | " << (r.same_best ? "yes" : "no") << " |\n";
+  }
   out << "\n" << paper_agreement_conclusion(*agreement) << "\n";
   return out.str();
 }

@@ -44,6 +44,10 @@ struct RankedMethod {
 struct RowAgreement {
   std::string scenario, dataset;
   std::vector<RankedMethod> paper, ours;  // the methods both have, best first
+  // The same methods in name order, with the paper's means and ours in that order: what the
+  // permutation test relabels.
+  std::vector<std::string> names;
+  std::vector<double> paper_by_name, ours_by_name;
   double tau = 0.0;                       // Kendall's τ-b of the two orders
   std::optional<Interval> tau_ci;         // 95% stratified bootstrap over our seeds
   bool same_best = false;
@@ -70,6 +74,13 @@ double kendall_tau_b(const std::vector<double>& x, const std::vector<double>& y)
 // The agreement of our rows with the paper's; nullopt when no row of ours is one of the paper's
 // with at least kMinRankedMethods methods on both sides.
 std::optional<PaperAgreement> paper_agreement(const std::vector<OurRow>& rows);
+
+// A row's cells as text, unescaped (the page escapes them): the paper's order and ours, best
+// first ("RLPD 12.3 > DDPG 10.1 > …"), and the τ interval ("[lo, hi]", "—" without one).
+struct RowTexts {
+  std::string paper_order, our_order, tau_interval;
+};
+RowTexts row_texts(const RowAgreement& row);
 
 // table.md's section "The paper beside us" (empty when paper_agreement has nothing), and the
 // sentences the page shares with it.

@@ -220,23 +220,17 @@ std::string run_cost_table(const ReportFolder& folder) {
 std::string paper_beside(const ReportFolder& folder) {
   const std::optional<PaperAgreement> agreement = paper_agreement(our_rows(folder.summary));
   if (!agreement) return "";
-  const auto order = [](const std::vector<RankedMethod>& methods) {
-    std::string html;
-    for (const RankedMethod& m : methods)
-      html += (html.empty() ? "" : " &gt; ") + html_escape(algo_display_name(m.algo)) + " " + fixed(m.mean, 1);
-    return html;
-  };
   std::string html = "<section id=\"paper-beside\"><h2>The paper beside us</h2>\n<p>" + html_escape(paper_agreement_preamble()) +
                      "</p>\n<table class=\"sortable numbers\" id=\"paper-beside-table\">" +
                      header({"Scenario", "Dataset", "The paper's order", "Our order", "τ", "95% interval", "Same best"}) +
                      "<tbody>\n";
   std::size_t index = 0;
   for (const RowAgreement& r : agreement->rows) {
+    const RowTexts text = row_texts(r);
     html += "<tr data-order=\"" + std::to_string(index++) + "\"><td>" + html_escape(scenario_display_name(r.scenario)) +
-            "</td><td>" + html_escape(dataset_display_name(r.dataset)) + "</td><td>" + order(r.paper) + "</td><td>" +
-            order(r.ours) + "</td><td" + sort_value(r.tau) + ">" + fixed(r.tau, 2) + "</td><td>" +
-            (r.tau_ci ? "[" + fixed(r.tau_ci->lo, 2) + ", " + fixed(r.tau_ci->hi, 2) + "]" : "—") + "</td><td>" +
-            (r.same_best ? "yes" : "no") + "</td></tr>\n";
+            "</td><td>" + html_escape(dataset_display_name(r.dataset)) + "</td><td>" + html_escape(text.paper_order) +
+            "</td><td>" + html_escape(text.our_order) + "</td><td" + sort_value(r.tau) + ">" + fixed(r.tau, 2) +
+            "</td><td>" + html_escape(text.tau_interval) + "</td><td>" + (r.same_best ? "yes" : "no") + "</td></tr>\n";
   }
   return html + "</tbody></table>\n<p>" + html_escape(paper_agreement_conclusion(*agreement)) + "</p></section>\n";
 }
