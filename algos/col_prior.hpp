@@ -6,7 +6,8 @@
 namespace rapid {
 
 // CoL's imitation weight; CoL-all and the Q-filter read it too.
-inline constexpr MethodKey kLambdaBc{"lambda_bc", MethodKey::kNumber, kNonNegative, "CoL's imitation weight λ_BC"};
+inline constexpr MethodKey kLambdaBc{"lambda_bc", MethodKey::kNumber, kNonNegative, "CoL's imitation weight λ_BC",
+                                     std::nullopt};  // every config gives it
 
 class ColPrior : public ActorCritic {
  public:

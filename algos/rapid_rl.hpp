@@ -8,7 +8,8 @@
 namespace rapid {
 
 inline constexpr MethodKey kEpsilon{"epsilon", MethodKey::kNumber, kAnyNumber,
-                                "RAPID-RL's reward threshold ε, in the scenario's reward units (docs/scenarios.md)"};
+                                "RAPID-RL's reward threshold ε, in the scenario's reward units (docs/scenarios.md)",
+                                std::nullopt};  // every config gives it
 
 class RapidRl : public ActorCritic {
  public:

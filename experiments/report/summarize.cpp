@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "algos/rapid_rl.hpp"  // kEpsilon: the report shows each scenario's ε
 #include "algos/registry.hpp"
 #include "core/hash.hpp"
 #include "core/json_input.hpp"
@@ -79,9 +80,9 @@ CellSummary summarize_cell(const SweepFolder& folder, const std::vector<const Sw
       loaded.result.bc_loss = bc_loss_points(*loaded.record);
       records.push_back(std::move(*loaded.record));
       const nlohmann::json& config = records.back().contains("config") ? records.back()["config"] : nlohmann::json();
-      if (config.is_object() && config.contains("epsilon") && config["epsilon"].is_number() &&
+      if (config.is_object() && config.contains(kEpsilon.name) && config[kEpsilon.name].is_number() &&
           !summary.epsilon.count(cell.scenario))
-        summary.epsilon[cell.scenario] = config["epsilon"].get<double>();
+        summary.epsilon[cell.scenario] = config[kEpsilon.name].get<double>();
     }
     cell.seeds.push_back(std::move(loaded.result));
   }
@@ -322,7 +323,8 @@ Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptio
     if (!s.epsilon.count(scenario)) {
       try {
         const nlohmann::json config = cell_config(s.grid, scenario);
-        if (config.contains("epsilon") && config["epsilon"].is_number()) s.epsilon[scenario] = config["epsilon"].get<double>();
+        if (config.contains(kEpsilon.name) && config[kEpsilon.name].is_number())
+          s.epsilon[scenario] = config[kEpsilon.name].get<double>();
       } catch (const std::exception&) {
       }
     }

@@ -52,11 +52,11 @@ ResolvedConfig resolve_job_config(const std::string& scenario, const std::string
   r.config = merge_layers(layers, scenario, &origin);
   const nlohmann::json fills = recipe_fills(r.config, algo);
   for (const auto& [key, value] : fills.items()) origin[key] = "recipe of " + algo;
-  const nlohmann::json runs = with_recipe(r.config, algo);
-  r.run = run_config_from_json(runs, scenario);  // the one parse
-  find_algorithm(algo).check(r.run.agent);
+  r.run = check_config_fits(algo, r.config, scenario);  // the one parse
+  const nlohmann::json runs = with_recipe(r.config, algo);  // what it parsed, for the listing
+  const Algorithm& row = find_algorithm(algo);
   for (const ConfigKey& key : config_keys()) {
-    if (!key.applies_to(scenario) || !find_algorithm(algo).reads(key.name)) continue;
+    if (!key.applies_to(scenario) || !row.reads(key.name)) continue;
     if (runs.contains(key.name)) r.origins.push_back({key.name, runs.at(key.name), origin.at(key.name)});
     else r.origins.push_back({key.name, key.write(r.run), key.optional() ? "absent: neutral" : "the scenario's built-in value"});
   }

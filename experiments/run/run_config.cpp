@@ -167,10 +167,11 @@ void parse_set_option(const std::string& assignment, nlohmann::json& overrides) 
 nlohmann::json resolve_config(const std::string& scenario, const std::string& profile,
                               const nlohmann::json& grid_overrides, const nlohmann::json& set_overrides) {
   check_profile(profile, scenario);
-  nlohmann::json config = default_config_json(scenario, profile);
-  if (grid_overrides.is_object()) apply_overrides(config, grid_overrides, scenario, "grid");
-  if (set_overrides.is_object()) apply_overrides(config, set_overrides, scenario, "--set");
-  run_config_from_json(config, scenario);  // validates the whole
+  std::vector<ConfigLayer> layers = default_config_layers(scenario, profile);
+  if (grid_overrides.is_object()) layers.push_back({"grid", grid_overrides});
+  if (set_overrides.is_object()) layers.push_back({"--set", set_overrides});
+  nlohmann::json config = merge_layers(layers, scenario);  // the merge `rapid run` makes
+  run_config_from_json(config, scenario);                  // validates the whole
   return config;
 }
 
