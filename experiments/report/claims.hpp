@@ -1,18 +1,9 @@
-// The paper's claims (C1–C6, docs/reports.md §claims.md) checked against a sweep's summary. Each check says PASS or
-// FAIL with the numbers behind it, or N/A when the grid lacks what the claim is about (an
-// algorithm, a dataset, the merge scenario). A cell the grid has but whose seeds all failed or
-// are missing counts against the claim: no data is not evidence for it.
-//
-// Definitions (also written into claims.md):
-//   C1 RAPID-RL has the highest mean final return in ≥ 2/3 of the scenario × dataset rows.
-//   C2 RAPID-RL's mean beats DDPG's in every row (the initial dataset included).
-//   C3 CoL-all's mean is below DDPG's in every row.
-//   C4 CoL-prior's mean with `initial` is below its mean with `final+medium` in every scenario.
-//   C5 RAPID-RL has the largest area under the mean evaluation curve (trapezoid over target_step
-//      divided by the step range) in ≥ 2/3 of the rows.
-//   C6 merge, RAPID-RL: with final+medium the prior BC loss averaged over the logged steps is
-//      below the online one; with initial the prior loss is below the online one on average over
-//      the first 20% of the logged step range and above it over the last 20%.
+// The point-mean check of the claims (docs/reports.md §claims.md): the paper's C1–C6 as declared in
+// experiments/claims/paper.json and the grid's own, each expanded by claim_plan.hpp and judged on
+// the cells' means (seed-mean curves for the BC windows). PASS or FAIL with the numbers behind it,
+// or N/A when the grid lacks what the claim is about (an algorithm, a dataset, a scenario). A cell
+// the grid has but whose seeds all failed or are missing counts against the claim: no data is not
+// evidence for it. decisions.hpp decides the same comparisons by tests.
 #pragma once
 
 #include <vector>

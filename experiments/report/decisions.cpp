@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "algos/registry.hpp"
+#include "experiments/report/claim_plan.hpp"
 #include "experiments/report/curves.hpp"
 #include "experiments/report/format.hpp"
 #include "core/json_input.hpp"
@@ -24,15 +25,11 @@ bool has(const std::vector<std::string>& names, const std::string& x) {
   return std::find(names.begin(), names.end(), x) != names.end();
 }
 
-// What the claims compare, gathered before any test runs.
-struct Group {
-  std::vector<std::size_t> comparisons;  // the group holds when every one of them goes as wanted
-};
-struct ClaimSpec {
-  std::string id;
-  std::vector<Group> groups;
-  int needed = 0;  // groups that must hold
-  std::string not_applicable;
+// A claim's groups as indices into the family's comparisons.
+struct IndexedClaim {
+  std::string id, not_applicable;
+  std::vector<std::vector<std::size_t>> groups;
+  int needed = 0;
 };
 
 std::vector<double> seed_areas(const CellSummary& cell) {
@@ -87,94 +84,15 @@ class Builder {
     return it == settings_.delta.end() ? std::nullopt : std::optional<double>(it->second);
   }
 
-  // C1 / C5: per row, RAPID-RL against each other paper algorithm on a per-seed metric.
-  ClaimSpec most_rows(const std::string& id, const std::string& metric,
-                      const std::function<std::vector<double>(const CellSummary&)>& values) {
-    ClaimSpec c{id, {}, 0, {}};
-    if (!has(s_.grid.algos, kRapidRl)) return na(c, "the grid has no rapid-rl");
-    if (std::none_of(s_.grid.algos.begin(), s_.grid.algos.end(), is_paper_baseline))
-      return na(c, "the grid has no other algorithm to compare with");
-    for (const TableRow& row : s_.rows) {
-      Group g;
-      const CellSummary* ours = s_.column_cell(row, kRapidRl);
-      for (const auto& [algo, index] : row.cells) {
-        if (!is_paper_baseline(algo)) continue;
-        g.comparisons.push_back(add(two_sample(row_label(row), metric, algo_display_name(kRapidRl),
-                                               algo_display_name(algo), ours, &s_.cells[index], values,
-                                               delta(row.scenario))));
-      }
-      c.groups.push_back(g);
+  // A planned claim's comparisons into the family, with their per-seed values.
+  IndexedClaim add_plan(const ClaimPlan& p, const std::string& not_applicable) {
+    IndexedClaim c{p.spec->id, not_applicable.empty() ? p.not_applicable : not_applicable, {}, p.needed};
+    if (!c.not_applicable.empty()) return c;
+    for (const PlannedGroup& g : p.groups) {
+      std::vector<std::size_t> indices;
+      for (const PlannedComparison& planned : g.comparisons) indices.push_back(add(from_plan(planned)));
+      c.groups.push_back(std::move(indices));
     }
-    c.needed = static_cast<int>((2 * c.groups.size() + 2) / 3);  // ≥ 2/3 of the rows
-    return c;
-  }
-
-  // C2 / C3: per row, `x` against `y` on final return, `wanted` the outcome the claim needs.
-  ClaimSpec every_row(const std::string& id, const std::string& x, const std::string& y, ComparisonOutcome wanted) {
-    ClaimSpec c{id, {}, 0, {}};
-    for (const std::string& a : {x, y})
-      if (!has(s_.grid.algos, a)) return na(c, "the grid has no " + a);
-    for (const TableRow& row : s_.rows) {
-      Comparison cmp = two_sample(row_label(row), "final return", algo_display_name(x), algo_display_name(y),
-                                  s_.column_cell(row, x), s_.column_cell(row, y), finals, delta(row.scenario));
-      cmp.wanted = wanted;
-      c.groups.push_back({{add(std::move(cmp))}});
-    }
-    c.needed = static_cast<int>(c.groups.size());
-    return c;
-  }
-
-  ClaimSpec c4() {
-    ClaimSpec c{"C4", {}, 0, {}};
-    if (!has(s_.grid.algos, "col-prior")) return na(c, "the grid has no col-prior");
-    for (const char* d : {"initial", "final+medium"})
-      if (!has(s_.grid.datasets, d)) return na(c, std::string("the grid has no ") + d + " dataset");
-    for (const std::string& scenario : s_.grid.scenarios) {
-      Comparison cmp = two_sample(scenario, "final return", algo_display_name("col-prior") + " " + dataset_display_name("final+medium"),
-                                  algo_display_name("col-prior") + " " + dataset_display_name("initial"),
-                                  s_.find(scenario, "final+medium", "col-prior"), s_.find(scenario, "initial", "col-prior"),
-                                  finals, delta(scenario));
-      c.groups.push_back({{add(std::move(cmp))}});
-    }
-    c.needed = static_cast<int>(c.groups.size());
-    return c;
-  }
-
-  ClaimSpec c6() {
-    ClaimSpec c{"C6", {}, 0, {}};
-    if (!has(s_.grid.scenarios, "merge")) return na(c, "the grid has no merge scenario");
-    if (!has(s_.grid.algos, kRapidRl)) return na(c, "the grid has no rapid-rl");
-    for (const char* d : {"initial", "final+medium"})
-      if (!has(s_.grid.datasets, d)) return na(c, std::string("the grid has no ") + d + " dataset");
-    Group g;
-    const auto add_bc = [&](const std::string& dataset, const std::string& window, double from, double to, ComparisonOutcome wanted) {
-      const CellSummary* cell = s_.find("merge", dataset, kRapidRl);
-      Comparison cmp;
-      cmp.where = "merge / " + dataset + ", " + window;
-      cmp.metric = "BC loss";
-      cmp.x = "prior";
-      cmp.y = "online";
-      cmp.paired = true;
-      cmp.wanted = wanted;
-      if (cell) {
-        std::tie(cmp.xs, cmp.ys) = seed_bc_means(*cell, from, to);
-        cmp.cells.push_back(cell->key());
-      }
-      g.comparisons.push_back(add(std::move(cmp)));
-    };
-    const auto range = [&](const std::string& dataset) -> std::pair<double, double> {
-      const CellSummary* cell = s_.find("merge", dataset, kRapidRl);
-      if (!cell || cell->bc_prior.empty()) return {0.0, -1.0};
-      return {cell->bc_prior.step.front(), cell->bc_prior.step.back()};
-    };
-    const auto [g0, g1] = range("final+medium");
-    add_bc("final+medium", "all steps", g0, g1, ComparisonOutcome::kYBetter);  // "better" = larger: prior below online
-    const auto [p0, p1] = range("initial");
-    const double fifth = (p1 - p0) * 0.2;
-    add_bc("initial", "first 20 % of steps", p0, p0 + fifth, ComparisonOutcome::kYBetter);
-    add_bc("initial", "last 20 % of steps", p1 - fifth, p1, ComparisonOutcome::kXBetter);
-    c.groups.push_back(g);
-    c.needed = 1;
     return c;
   }
 
@@ -187,10 +105,11 @@ class Builder {
                        s_.column_cell(row, kRapidRl), s_.column_cell(row, algo), finals, delta(row.scenario)));
   }
 
-  Decisions finish(std::vector<ClaimSpec> specs) {
+  Decisions finish(const std::vector<IndexedClaim>& claims) {
     out_.settings = settings_;
     run_tests();
-    for (const ClaimSpec& spec : specs) out_.claims.push_back(verdict(spec));
+    for (const IndexedClaim& c : claims)
+      out_.claims.push_back(decided_verdict(c.id, c.not_applicable, c.groups, c.needed, out_.comparisons));
     return std::move(out_);
   }
 
@@ -198,8 +117,29 @@ class Builder {
   static std::vector<double> finals(const CellSummary& c) { return c.finals; }
   static std::string row_label(const TableRow& row) { return row.scenario + " / " + row.dataset; }
 
-  static ClaimSpec na(ClaimSpec c, std::string why) {
-    c.not_applicable = std::move(why);
+  Comparison from_plan(const PlannedComparison& p) const {
+    Comparison c;
+    c.where = p.where;
+    c.metric = p.metric;
+    c.x = p.x;
+    c.y = p.y;
+    c.wanted = p.wanted;
+    if (p.bc_loss) {
+      c.paired = true;
+      if (p.x_cell) {
+        std::tie(c.xs, c.ys) = seed_bc_means(*p.x_cell, p.from, p.to);
+        c.cells.push_back(p.x_cell->key());
+      }
+      return c;
+    }
+    c.delta = delta(p.delta_scenario);
+    const auto values = [&](const CellSummary& cell) {
+      return p.measure == ClaimMetric::kFinalReturn ? cell.finals : seed_areas(cell);
+    };
+    for (const CellSummary* cell : {p.x_cell, p.y_cell})
+      if (cell) c.cells.push_back(cell->key());
+    if (p.x_cell) c.xs = values(*p.x_cell);
+    if (p.y_cell) c.ys = values(*p.y_cell);
     return c;
   }
 
@@ -269,37 +209,6 @@ class Builder {
     }
   }
 
-  DecidedClaim verdict(const ClaimSpec& spec) const {
-    DecidedClaim d;
-    d.id = spec.id;
-    if (!spec.not_applicable.empty()) {
-      d.verdict = "N/A";
-      d.reason = spec.not_applicable;
-      return d;
-    }
-    int sure = 0, possible = 0, undecided = 0;
-    for (const Group& g : spec.groups) {
-      bool all_for = true, none_against = true;
-      for (std::size_t i : g.comparisons) {
-        const Comparison& c = out_.comparisons[i];
-        d.comparisons.push_back(i);
-        all_for = all_for && c.outcome == c.wanted;
-        none_against = none_against && (c.outcome == c.wanted || c.outcome == ComparisonOutcome::kUndecided);
-        undecided += c.outcome == ComparisonOutcome::kUndecided;
-      }
-      sure += all_for;
-      possible += none_against;
-    }
-    const int total = static_cast<int>(spec.groups.size());
-    if (total > 0 && sure >= spec.needed) d.verdict = "CONFIRMED";
-    else if (total == 0 || possible < spec.needed) d.verdict = "REFUTED";
-    else d.verdict = "UNDECIDED";
-    d.reason = std::to_string(sure) + " of " + std::to_string(total) + " hold as decided, " + std::to_string(possible) +
-               " could (needs " + std::to_string(spec.needed) + "); " + std::to_string(undecided) +
-               " comparison" + (undecided == 1 ? "" : "s") + " undecided";
-    return d;
-  }
-
   const Summary& s_;
   const DecisionSettings& settings_;
   const FrozenComparisons& frozen_;
@@ -349,19 +258,43 @@ std::optional<DecisionSettings> load_decision_settings(const std::string& profil
 
 Decisions decide_claims(const Summary& s, const DecisionSettings& settings, const FrozenComparisons& frozen) {
   Builder b(s, settings, frozen);
-  std::vector<ClaimSpec> specs;
-  if (!s.grid.axes.empty()) {
-    for (const char* id : {"C1", "C2", "C3", "C4", "C5", "C6"})
-      specs.push_back({id, {}, 0, "the grid has axes: the claims are checked on grids without"});
-    return b.finish(std::move(specs));
+  const std::string axes = s.grid.axes.empty() ? "" : "the grid has axes: the claims are checked on grids without";
+  std::vector<IndexedClaim> claims;
+  for (const ClaimPlan& p : plan_claims(s)) claims.push_back(b.add_plan(p, axes));
+  return b.finish(claims);
+}
+
+DecidedClaim decided_verdict(const std::string& id, const std::string& not_applicable,
+                             const std::vector<std::vector<std::size_t>>& groups, int needed,
+                             const std::vector<Comparison>& comparisons) {
+  DecidedClaim d;
+  d.id = id;
+  if (!not_applicable.empty()) {
+    d.verdict = "N/A";
+    d.reason = not_applicable;
+    return d;
   }
-  specs.push_back(b.most_rows("C1", "final return", [](const CellSummary& c) { return c.finals; }));
-  specs.push_back(b.every_row("C2", kRapidRl, "ddpg", ComparisonOutcome::kXBetter));
-  specs.push_back(b.every_row("C3", "col-all", "ddpg", ComparisonOutcome::kYBetter));
-  specs.push_back(b.c4());
-  specs.push_back(b.most_rows("C5", "curve area", seed_areas));
-  specs.push_back(b.c6());
-  return b.finish(std::move(specs));
+  int sure = 0, possible = 0, undecided = 0;
+  for (const std::vector<std::size_t>& g : groups) {
+    bool all_for = true, none_against = true;
+    for (std::size_t i : g) {
+      const Comparison& c = comparisons.at(i);
+      d.comparisons.push_back(i);
+      all_for = all_for && c.outcome == c.wanted;
+      none_against = none_against && (c.outcome == c.wanted || c.outcome == ComparisonOutcome::kUndecided);
+      undecided += c.outcome == ComparisonOutcome::kUndecided;
+    }
+    sure += all_for;
+    possible += none_against;
+  }
+  const int total = static_cast<int>(groups.size());
+  if (total > 0 && sure >= needed) d.verdict = "CONFIRMED";
+  else if (total == 0 || possible < needed) d.verdict = "REFUTED";
+  else d.verdict = "UNDECIDED";
+  d.reason = std::to_string(sure) + " of " + std::to_string(total) + " hold as decided, " + std::to_string(possible) +
+             " could (needs " + std::to_string(needed) + "); " + std::to_string(undecided) + " comparison" +
+             (undecided == 1 ? "" : "s") + " undecided";
+  return d;
 }
 
 std::vector<std::string> published_baselines(const Summary& s) {

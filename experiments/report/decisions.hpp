@@ -22,6 +22,13 @@ std::optional<DecisionSettings> load_decision_settings(const std::string& profil
 // looks, report/decide_looks.hpp) keep their outcome from then, in the family with p 0 or 1.
 Decisions decide_claims(const Summary& s, const DecisionSettings& settings, const FrozenComparisons& frozen = {});
 
+// A claim's verdict from its groups of comparisons (indices into `comparisons`, each decided):
+// CONFIRMED when at least `needed` groups hold as decided, REFUTED when fewer than `needed` still
+// could, else UNDECIDED; N/A with `not_applicable` as the reason when that is not empty.
+DecidedClaim decided_verdict(const std::string& id, const std::string& not_applicable,
+                             const std::vector<std::vector<std::size_t>>& groups, int needed,
+                             const std::vector<Comparison>& comparisons);
+
 // The grid's baselines that the paper does not run (registry: not in the paper, not a variant of
 // RAPID-RL; rlpd-sac and td3-bc), in the grid's order.
 std::vector<std::string> published_baselines(const Summary& s);

@@ -10,6 +10,7 @@
 #include "core/printable.hpp"
 #include "envs/env.hpp"
 #include "envs/scenario_descriptor.hpp"
+#include "experiments/sweep/claim_spec.hpp"
 #include "experiments/run/config_keys.hpp"
 #include "experiments/run/dataset_build.hpp"
 #include "experiments/run/job.hpp"
@@ -26,7 +27,7 @@ namespace fs = std::filesystem;
 const std::set<std::string> kTopLevelKeys = {"name",   "description",     "scenarios", "datasets",    "algos",
                                              "seeds",  "config",          "scenario_config", "reference",
                                              "max_retries", "jobs", "profile", "axes", "scenario_files",
-                                             "algo_config"};
+                                             "algo_config", "claims"};
 // An axis longer than this is a mistake, not a study (each value is validated against the config).
 constexpr std::size_t kMaxAxisValues = 1000;
 // The double the default float came from, so grid.json shows 0.1 rather than 0.100000001.
@@ -417,6 +418,40 @@ std::map<std::string, std::string> parse_scenario_files(const GridChecker& check
   return grid.scenario_files;
 }
 
+namespace {
+// "claims": the grid's own claims (claim_spec.hpp), beside the paper's: each names only what the
+// grid has, and no id is taken twice.
+void parse_claims(const GridChecker& check, const json& doc, Grid& grid) {
+  if (!doc.contains("claims")) return;
+  const json& claims = doc["claims"];
+  if (!claims.is_array() || claims.empty()) check.fail("claims", "expected a non-empty array of claims, got " + json_excerpt(claims));
+  if (!grid.axes.empty()) check.fail("claims", "a grid with axes checks no claims (its sensitivity section answers instead)");
+  std::set<std::string> ids;
+  for (const ClaimSpec& c : paper_claims()) ids.insert(c.id);
+  for (std::size_t i = 0; i < claims.size(); ++i) {
+    const std::string field = "claims[" + std::to_string(i) + "]";
+    ClaimSpec c;
+    try {
+      c = parse_claim(claims[i], field);
+    } catch (const std::invalid_argument& e) {
+      const std::string what = e.what();
+      const auto colon = what.find(": ");
+      check.fail(what.substr(0, colon), what.substr(colon + 2));
+    }
+    if (!ids.insert(c.id).second) check.fail(field + ".id", "'" + c.id + "' is taken (the paper's C1–C6 and the grid's ids are one list)");
+    const auto must_have = [&](const std::vector<std::string>& named, const std::vector<std::string>& has, const char* what) {
+      for (const std::string& n : named)
+        if (std::find(has.begin(), has.end(), n) == has.end())
+          check.fail(field, "names " + std::string(what) + " '" + n + "', which the grid does not run; it has " + comma_joined(has));
+    };
+    must_have(c.named_algos(), grid.algos, "algorithm");
+    must_have(c.named_datasets(), grid.datasets, "dataset");
+    must_have(c.named_scenarios(), grid.scenarios, "scenario");
+    grid.claims.push_back(std::move(c));
+  }
+}
+}  // namespace
+
 Grid parse_grid(const json& doc, const std::string& label) {
   const GridChecker check(label);
   if (!doc.is_object()) check.fail("(top level)", "expected a JSON object");
@@ -461,6 +496,7 @@ Grid parse_grid(const json& doc, const std::string& label) {
   check_algorithms_fit(check, grid);
   parse_reference_steps(check, check.object_or_empty(doc, "reference"), grid);
   check_references_learn(check, grid);
+  parse_claims(check, doc, grid);
 
   grid.normalized = doc;
   grid.normalized["config"] = grid.config;

@@ -43,6 +43,7 @@
 
 #include "experiments/run/dataset_build.hpp"  // ReferenceSettings, the grid's "reference" object
 #include "experiments/run/run_config.hpp"     // kDefaultProfile
+#include "experiments/sweep/claim_spec.hpp"
 
 namespace rapid {
 
@@ -68,6 +69,7 @@ struct Grid {
   ReferenceSettings reference;
   std::map<std::string, long> reference_steps;  // "reference"."steps" by scenario (absent: 0)
   std::vector<GridAxis> axes;  // in key order
+  std::vector<ClaimSpec> claims;  // the grid's own, checked after the paper's (claim_spec.hpp)
   int max_retries = 2;
   std::optional<int> jobs;
   // The grid with every default spelled out, as written to SWEEP/grid.json. Kept as parsed (not

@@ -28,10 +28,13 @@ class DecisionsTest : public ::testing::Test {
   std::filesystem::path sweep = scratch.path() / "sweep";
 
   Summary make(const std::function<double(const std::string& dataset, const std::string& algo)>& mean, int seeds,
-               double spread, const std::vector<std::string>& algos = kAlgos) {
+               double spread, const std::vector<std::string>& algos = kAlgos,
+               const nlohmann::json& claims = nullptr) {
     std::vector<int> seed_list;
     for (int i = 0; i < seeds; ++i) seed_list.push_back(i);
-    report_test::write_grid(sweep, report_test::make_grid("decide", {"merge"}, kDatasets, algos, seed_list));
+    nlohmann::json grid = report_test::make_grid("decide", {"merge"}, kDatasets, algos, seed_list);
+    if (!claims.is_null()) grid["claims"] = claims;  // the grid's own, beside the paper's
+    report_test::write_grid(sweep, grid);
     for (const std::string& algo : algos)
       for (const std::string& dataset : kDatasets) {
         if (algo == "ddpg" && dataset != kDatasets.front()) continue;

@@ -19,6 +19,7 @@
 #include "experiments/report/report_page.hpp"
 #include "experiments/report/summarize.hpp"
 #include "experiments/report/write_reports.hpp"
+#include "experiments/sweep/grid.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
 #include "tests/reports/decisions_fixture.hpp"
 #include "tests/reports/report_test_util.hpp"
@@ -77,6 +78,71 @@ TEST_F(DecisionsTest, ClearDifferencesConfirmAndRefute) {
 // decide.json's looks_max sets the level α / K of every test of a --decide folder. One that cannot be
 // read, or says no whole number of looks, is refused naming the file; it once made summarize
 // decide at α, quietly (issue 46).
+// A grid's own claim (claim_spec.hpp) is checked by the same engine as C1–C6: point-mean and
+// decided verdicts, in claims.md after the paper's, and a grid naming what it does not run is refused.
+TEST_F(DecisionsTest, AGridsOwnClaimIsCheckedAndDecidedLikeThePapers) {
+  const nlohmann::json claims = {
+      {{"id", "Q1"}, {"statement", "CoL-prior beats RLPD on initial."}, {"kind", "every_row"}, {"x", "col-prior"},
+       {"y", "rlpd"}, {"direction", "above"}, {"datasets", {"initial"}}},
+      {{"id", "Q2"}, {"statement", "RLPD beats CoL-prior on initial."}, {"kind", "every_row"}, {"x", "rlpd"},
+       {"y", "col-prior"}, {"direction", "above"}, {"datasets", {"initial"}}},
+      {{"id", "Q3"}, {"statement", "CoL-prior is the best of three in most rows."}, {"kind", "most_rows"},
+       {"algo", "col-prior"}, {"against", {"rlpd", "ddpg"}}, {"share", {1, 2}}}};
+  // CoL-prior 40 above RLPD with initial (> 3δ), 40 below it with final+medium; DDPG far below.
+  const Summary s = make(
+      [](const std::string& dataset, const std::string& algo) {
+        if (algo == "col-prior") return dataset == "initial" ? 200.0 : 120.0;
+        if (algo == "ddpg") return 50.0;
+        return 160.0;
+      },
+      10, 2.0, kAlgos, claims);
+  ASSERT_EQ(s.claims.size(), 9u);
+  EXPECT_EQ(s.claims[6].id, "Q1");
+  EXPECT_EQ(s.claims[6].verdict, "PASS") << s.claims[6].reason;
+  EXPECT_EQ(s.claims[6].reason, "holds in 1/1 rows (needs all)");  // only the initial row
+  EXPECT_EQ(s.claims[7].verdict, "FAIL");
+  EXPECT_EQ(s.claims[8].verdict, "PASS") << s.claims[8].reason;  // 1 of 2 rows, needs ≥ 1/2
+  EXPECT_EQ(s.claims[8].reason, "CoL-prior has the highest mean in 1/2 rows (needs ≥ 1/2)");
+  // Written out when the grid gives none: what the check is, in words.
+  EXPECT_NE(s.claims[6].definition.find("col-prior's mean final return is strictly above rlpd's in every row with dataset initial"),
+            std::string::npos)
+      << s.claims[6].definition;
+  EXPECT_EQ(claim(s, "Q1").verdict, "CONFIRMED") << claim(s, "Q1").reason;
+  EXPECT_EQ(claim(s, "Q2").verdict, "REFUTED") << claim(s, "Q2").reason;
+  EXPECT_EQ(claim(s, "Q3").verdict, "CONFIRMED") << claim(s, "Q3").reason;
+  EXPECT_EQ(s.decisions->comparisons[claim(s, "Q1").comparisons.at(0)].where, "merge / initial");
+  const std::string md = claims_markdown(s);
+  EXPECT_NE(md.find("| Q1 | CONFIRMED |"), std::string::npos) << md.substr(0, 3000);
+  EXPECT_LT(md.find("| C6 |"), md.find("| Q1 |"));
+
+  // A claim about an algorithm, dataset or scenario the grid lacks is a mistake in the grid.
+  nlohmann::json grid = report_test::make_grid("decide", {"merge"}, kDatasets, kAlgos, {0, 1});
+  grid["claims"] = {{{"id", "Q1"}, {"statement", "s"}, {"kind", "every_row"}, {"x", "td3-bc"}, {"y", "rlpd"},
+                     {"direction", "above"}}};
+  EXPECT_THROW(
+      {
+        try {
+          parse_grid(grid, "g.json");
+        } catch (const std::invalid_argument& e) {
+          EXPECT_EQ(std::string(e.what()).rfind("grid g.json: claims[0]: names algorithm 'td3-bc', which the grid does not run", 0), 0u)
+              << e.what();
+          throw;
+        }
+      },
+      std::invalid_argument);
+  grid["claims"][0]["x"] = "col-prior";
+  grid["claims"][0]["id"] = "C2";
+  EXPECT_THROW(parse_grid(grid, "g.json"), std::invalid_argument);  // the paper's id
+  grid["claims"][0]["id"] = "Q1";
+  grid["claims"][0]["direction"] = "up";
+  try {
+    parse_grid(grid, "g.json");
+    ADD_FAILURE() << "a wrong direction was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "grid g.json: claims[0].direction: expected \"below\" or \"above\", got \"up\"");
+  }
+}
+
 TEST_F(DecisionsTest, AnUnreadableDecideFileIsRefusedNotDecidedAtAlpha) {
   make([](const std::string&, const std::string& algo) { return algo == "rapid-rl" ? 200.0 : 160.0; }, 10, 2.0);
   const std::filesystem::path decide = sweep / "decide.json";
