@@ -73,15 +73,17 @@ EvalResult head_of(const EvalResult& r, int n) {
 
 }  // namespace
 
-EvalResult evaluate(Env& env, ActorCritic& agent, int episodes) {
+EvalResult evaluate(Env& env, const EvalPolicy& policy, int episodes) {
   Vec obs(env.obs_dim());
+  Vec action(env.act_dim());
   EvalResult result;
   for (int e = 0; e < episodes; ++e) {
     env.reset(stream_seed(kEvaluationBaseSeed, Stream::kEnvEval, static_cast<std::uint64_t>(e)), obs);
     double ret = 0;
     bool collided = false;
     for (;;) {
-      const StepResult r = env.step(agent.act(obs).col(0), obs);
+      policy(obs, action);
+      const StepResult r = env.step(action, obs);
       ret += r.reward;
       collided = collided || r.info.collision;
       if (r.terminated || r.truncated) break;
@@ -90,6 +92,10 @@ EvalResult evaluate(Env& env, ActorCritic& agent, int episodes) {
     result.collided.push_back(collided);
   }
   return summarise(result);
+}
+
+EvalResult evaluate(Env& env, ActorCritic& agent, int episodes) {
+  return evaluate(env, [&agent](const Vec& obs, VecRef action) { action = agent.act(obs).col(0); }, episodes);
 }
 
 long first_update_step(const RunConfig& config, bool with_prior) {

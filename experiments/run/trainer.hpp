@@ -67,7 +67,14 @@ class DivergedError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Runs `episodes` episodes of the deterministic policy on the fixed evaluation seeds.
+// A policy as evaluate() asks it: writes the action for `obs` into `action` (act_dim entries).
+using EvalPolicy = std::function<void(const Vec& obs, VecRef action)>;
+
+// The evaluation protocol: `episodes` episodes of `policy` on the fixed evaluation seeds (the
+// same traffic for every run, algorithm and language: the Python module scores its policies here).
+EvalResult evaluate(Env& env, const EvalPolicy& policy, int episodes);
+
+// The agent's deterministic policy evaluated so.
 EvalResult evaluate(Env& env, ActorCritic& agent, int episodes);
 
 // The first decision after which the agent updates (Algorithm 1's start): once `warmup_steps`
