@@ -20,6 +20,7 @@ packages=(
   python3 python3-matplotlib  # figures: scripts/plot runs Debian's /usr/bin/python3 (numpy
                               # comes with matplotlib)
   python3-pil              # Pillow, for matplotlib's GIF writer (animated figures)
+  pybind11-dev python3-dev python3-numpy  # the Python module rapid_harness (docs/python.md)
   xvfb xauth libgl1-mesa-dri  # a headless X server with software OpenGL for the sumo-gui test
 )
 # Everything else the scripts and tests call is in every Debian root, even a minbase one:

@@ -4,6 +4,7 @@
 #   experiments/cli  →  experiments/report  →  experiments/sweep  →  experiments/run  →  envs, algos  →  core
 #   experiments/bench (beside report and sweep) → experiments/run; only experiments/cli uses bench
 #   experiments/tune → experiments/report (its formats), experiments/sweep; only experiments/cli uses tune
+#   python (the Python module) → experiments/run, beside experiments/cli
 #
 # One line "FOLDER: MAY INCLUDE..." per folder. An include of a path under none of these folders (a
 # system header, the generated revision.hpp) is not ours and not checked; a C++ file directly in
@@ -21,7 +22,8 @@ set(rules
   "experiments/report: core envs algos experiments/run experiments/sweep"
   "experiments/bench: core envs algos experiments/run"
   "experiments/tune: core envs algos experiments/run experiments/sweep experiments/report"
-  "experiments/cli: core envs algos experiments/run experiments/sweep experiments/report experiments/bench experiments/tune")
+  "experiments/cli: core envs algos experiments/run experiments/sweep experiments/report experiments/bench experiments/tune"
+  "python: core envs algos experiments/run")
 
 if(NOT ROOT)
   message(FATAL_ERROR "include_layers.cmake: pass -DROOT=<source tree>")
@@ -52,7 +54,7 @@ endfunction()
 
 set(violations "")
 set(checked 0)
-file(GLOB_RECURSE sources RELATIVE "${ROOT}" "${ROOT}/core/*" "${ROOT}/envs/*" "${ROOT}/algos/*" "${ROOT}/experiments/*")
+file(GLOB_RECURSE sources RELATIVE "${ROOT}" "${ROOT}/core/*" "${ROOT}/envs/*" "${ROOT}/algos/*" "${ROOT}/experiments/*" "${ROOT}/python/*")
 foreach(file IN LISTS sources)
   if(NOT file MATCHES "\\.(cpp|hpp|h)$")
     continue()

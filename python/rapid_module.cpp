@@ -1,0 +1,245 @@
+// rapid_harness: the harness's scenarios, prior datasets and evaluation protocol from Python
+// (docs/python.md). Built by CMake beside `rapid` when pybind11 is installed; import it from the
+// build folder (PYTHONPATH=build). An Env follows Gymnasium's API; it steps the same C++
+// environment a `rapid run` trains in, writing each observation straight into a fresh numpy array.
+#include <pybind11/eval.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "core/dataset_io.hpp"
+#include "core/rng.hpp"
+#include "envs/env.hpp"
+#include "experiments/run/run_config.hpp"
+#include "experiments/run/trainer.hpp"
+
+namespace py = pybind11;
+
+namespace rapid {
+namespace {
+
+// The run config of `scenario` in `profile` with `overrides` (a dict of config keys) on top, as
+// `rapid run --set` would resolve it.
+RunConfig python_run_config(const std::string& scenario, const std::string& profile, const py::object& overrides) {
+  // An unknown name: make_env's one line, which lists the names ("unknown scenario 'x'; expected …").
+  if (!is_builtin_scenario(scenario) && !is_driving_scenario(scenario)) make_env(scenario, ScenarioSettings{});
+  check_profile(profile, scenario);
+  std::vector<ConfigLayer> layers = default_config_layers(scenario, profile);
+  if (!overrides.is_none()) {
+    if (!py::isinstance<py::dict>(overrides)) throw std::invalid_argument("config: expected a dict of config keys");
+    const std::string text = py::module_::import("json").attr("dumps")(overrides).cast<std::string>();
+    layers.push_back({"config", nlohmann::json::parse(text)});
+  }
+  return run_config_from_json(merge_layers(layers, scenario), scenario);
+}
+
+// A Box space: gymnasium's when it can be imported, else an object with its attributes.
+py::object box(int n, float low, float high) {
+  py::array_t<float> lo(n), hi(n);
+  for (int i = 0; i < n; ++i) lo.mutable_at(i) = low, hi.mutable_at(i) = high;
+  try {
+    return py::module_::import("gymnasium.spaces").attr("Box")(lo, hi, py::make_tuple(n), py::dtype::of<float>());
+  } catch (const py::error_already_set&) {
+    return py::module_::import("rapid_harness").attr("Box")(lo, hi);
+  }
+}
+
+class PyEnv {
+ public:
+  PyEnv(const std::string& scenario, const std::string& profile, const py::object& config)
+      : config_(python_run_config(scenario, profile, config)), env_(make_run_env(scenario, config_)) {
+    observation_space = box(env_->obs_dim(), -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity());
+    action_space = box(env_->act_dim(), -1.0f, 1.0f);
+  }
+
+  py::tuple reset(const py::object& seed, const py::object& options) {
+    live();
+    if (!options.is_none() && !(py::isinstance<py::dict>(options) && py::len(options) == 0))
+      throw std::invalid_argument("reset: this environment takes no options");
+    if (!seed.is_none()) {
+      const long long s = seed.cast<long long>();
+      if (s < 0) throw std::invalid_argument("reset: seed must be a non-negative integer, got " + std::to_string(s));
+      run_seed_ = static_cast<std::uint64_t>(s);
+      episode_ = 0;
+    }
+    // The traffic the training episodes of a `rapid run` with this seed see, in the same order.
+    py::array_t<float> obs(env_->obs_dim());
+    env_->reset(stream_seed(run_seed_, Stream::kEnvTrain, episode_++), view(obs));
+    needs_reset_ = false;
+    return py::make_tuple(obs, py::dict());
+  }
+
+  py::tuple step(const py::array_t<float, py::array::c_style | py::array::forcecast>& action) {
+    live();
+    if (needs_reset_) throw std::runtime_error("step: the episode has ended (or not begun): call reset() first");
+    if (action.ndim() != 1 || action.shape(0) != env_->act_dim())
+      throw std::invalid_argument("step: expected an action of shape (" + std::to_string(env_->act_dim()) + ",), got " +
+                                  shape_text(action));
+    for (py::ssize_t i = 0; i < action.shape(0); ++i)
+      if (!std::isfinite(action.at(i))) throw std::invalid_argument("step: the action holds NaN or inf");
+    py::array_t<float> obs(env_->obs_dim());
+    const Eigen::Map<const Vec> a(action.data(), env_->act_dim());
+    const StepResult r = env_->step(a, view(obs));
+    needs_reset_ = r.terminated || r.truncated;
+    py::dict info;
+    info["collision"] = r.info.collision;
+    info["ego_speed"] = r.info.ego_speed;
+    info["lane_changes"] = r.info.lane_changes;
+    info["lane_change_failed"] = r.info.lane_change_failed;
+    return py::make_tuple(obs, static_cast<double>(r.reward), r.terminated, r.truncated, info);
+  }
+
+  void close() { env_.reset(); }
+  int horizon() { return live().horizon(); }
+  std::string name() { return live().name(); }
+
+  py::object observation_space, action_space;
+
+ private:
+  Env& live() {
+    if (!env_) throw std::runtime_error("the environment is closed");
+    return *env_;
+  }
+  static Eigen::Map<Vec> view(py::array_t<float>& a) { return {a.mutable_data(), a.shape(0)}; }
+  static std::string shape_text(const py::array& a) {
+    std::string s = "(";
+    for (py::ssize_t i = 0; i < a.ndim(); ++i) s += std::to_string(a.shape(i)) + (a.ndim() == 1 || i + 1 < a.ndim() ? "," : "");
+    return s + ")";
+  }
+
+  RunConfig config_;
+  std::unique_ptr<Env> env_;
+  std::uint64_t run_seed_ = 0;
+  std::uint64_t episode_ = 0;
+  bool needs_reset_ = true;
+};
+
+// A D4RL-layout file as a dict of numpy arrays (N rows each) and its metadata. The arrays share
+// the dataset's memory (its column-major obs_dim × N matrix is row-major N × obs_dim): no copy.
+py::dict load_dataset(const std::string& path) {
+  auto data = std::make_shared<Dataset>(read_dataset(path));
+  py::capsule owner(new std::shared_ptr<Dataset>(data), [](void* p) { delete static_cast<std::shared_ptr<Dataset>*>(p); });
+  const auto n = static_cast<py::ssize_t>(data->size());
+  const auto matrix = [&](Mat& m) {
+    return py::array_t<float>({n, static_cast<py::ssize_t>(m.rows())},
+                              {static_cast<py::ssize_t>(sizeof(float) * m.rows()), static_cast<py::ssize_t>(sizeof(float))},
+                              m.data(), owner);
+  };
+  const auto flags = [&](const std::vector<bool>& v) {
+    py::array_t<bool> a(n);
+    for (py::ssize_t i = 0; i < n; ++i) a.mutable_at(i) = v[static_cast<std::size_t>(i)];
+    return a;
+  };
+  py::dict out;
+  out["observations"] = matrix(data->observations);
+  out["actions"] = matrix(data->actions);
+  out["rewards"] = py::array_t<float>({n}, {static_cast<py::ssize_t>(sizeof(float))}, data->rewards.data(), owner);
+  out["next_observations"] = matrix(data->next_observations);
+  out["terminals"] = flags(data->terminals);
+  out["timeouts"] = flags(data->timeouts);
+  py::dict metadata;
+  for (const auto& [key, value] : data->metadata) metadata[py::str(key)] = value;
+  out["metadata"] = metadata;
+  return out;
+}
+
+// A Python callable obs → action scored by the evaluation protocol every run is scored by
+// (trainer.hpp's evaluate: the evaluation seeds, episodes, one deterministic action per decision).
+py::dict py_evaluate(const py::function& policy, const std::string& scenario, const std::string& profile,
+                     const py::object& config, const py::object& episodes) {
+  const RunConfig run = python_run_config(scenario, profile, config);
+  // By default the episodes a run's final score is measured on: its final evaluation's, or, for a
+  // config without one, one evaluation's (the final score is then the mean of the last K of those).
+  const int protocol = run.final_eval_episodes > 0 ? run.final_eval_episodes : run.eval_episodes;
+  const int n = episodes.is_none() ? protocol : episodes.cast<int>();
+  if (n < 1) throw std::invalid_argument("evaluate: episodes must be at least 1, got " + std::to_string(n));
+  const std::unique_ptr<Env> env = make_run_env(scenario, run);
+  const py::ssize_t obs_dim = env->obs_dim(), act_dim = env->act_dim();
+  const EvalResult result = evaluate(
+      *env,
+      [&](const Vec& obs, VecRef action) {
+        py::array_t<float> o(obs_dim);
+        std::copy(obs.data(), obs.data() + obs_dim, o.mutable_data());
+        const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(policy(o));
+        if (!a || a.ndim() != 1 || a.shape(0) != act_dim)
+          throw std::invalid_argument("evaluate: the policy must return " + std::to_string(act_dim) + " numbers per observation");
+        for (py::ssize_t i = 0; i < act_dim; ++i) {
+          if (!std::isfinite(a.at(i))) throw std::invalid_argument("evaluate: the policy returned NaN or inf");
+          action[i] = a.at(i);
+        }
+      },
+      n);
+  py::dict out;
+  out["returns"] = result.returns;
+  out["return_mean"] = result.return_mean;
+  out["return_std"] = result.return_std;
+  out["collision_rate"] = result.collision_rate;
+  out["episodes"] = n;
+  return out;
+}
+
+}  // namespace
+}  // namespace rapid
+
+PYBIND11_MODULE(rapid_harness, m) {
+  using namespace rapid;
+  m.doc() = "The RAPID-RL harness's scenarios, prior datasets and evaluation protocol (docs/python.md).";
+  // Box stands in for gymnasium.spaces.Box where gymnasium is not installed (Debian has no package).
+  py::exec(R"py(
+import numpy as _np
+
+class Box:
+    """A box of float32 vectors with gymnasium.spaces.Box's attributes (low, high, shape, dtype)."""
+
+    def __init__(self, low, high):
+        self.low = _np.asarray(low, dtype=_np.float32)
+        self.high = _np.asarray(high, dtype=_np.float32)
+        self.shape = self.low.shape
+        self.dtype = _np.dtype(_np.float32)
+        self._rng = _np.random.default_rng()
+
+    def seed(self, seed=None):
+        self._rng = _np.random.default_rng(seed)
+        return [seed]
+
+    def sample(self):
+        """Uniform where bounded, standard normal where unbounded (as gymnasium samples)."""
+        bounded = _np.isfinite(self.low) & _np.isfinite(self.high)
+        x = self._rng.standard_normal(self.shape)
+        x[bounded] = self._rng.uniform(self.low[bounded], self.high[bounded])
+        return x.astype(_np.float32)
+
+    def contains(self, x):
+        x = _np.asarray(x)
+        return x.shape == self.shape and bool(_np.all(x >= self.low)) and bool(_np.all(x <= self.high))
+
+    __contains__ = contains
+
+    def __repr__(self):
+        return f"Box({self.low.min()}, {self.high.max()}, {self.shape}, float32)"
+)py",
+           m.attr("__dict__"));
+  m.def("scenarios", [] { return env_names(); }, "The built-in scenario names (a scenario file's path works too).");
+  m.def("profiles", [] { return config_profiles(); }, "The config profiles (short, flow).");
+  py::class_<PyEnv>(m, "Env", "A scenario as a Gymnasium-style environment.")
+      .def(py::init<const std::string&, const std::string&, const py::object&>(), py::arg("scenario"),
+           py::arg("profile") = std::string(kDefaultProfile), py::arg("config") = py::none())
+      .def("reset", &PyEnv::reset, py::kw_only(), py::arg("seed") = py::none(), py::arg("options") = py::none())
+      .def("step", &PyEnv::step, py::arg("action"))
+      .def("close", &PyEnv::close)
+      .def_property_readonly("horizon", &PyEnv::horizon)
+      .def_property_readonly("name", &PyEnv::name)
+      .def_readonly("observation_space", &PyEnv::observation_space)
+      .def_readonly("action_space", &PyEnv::action_space);
+  m.def("load_dataset", &load_dataset, py::arg("path"), "A D4RL-layout HDF5 file as numpy arrays and its metadata.");
+  m.def("evaluate", &py_evaluate, py::arg("policy"), py::arg("scenario"), py::arg("profile") = std::string(kDefaultProfile),
+        py::arg("config") = py::none(), py::arg("episodes") = py::none(),
+        "Scores a policy (obs -> action) by the evaluation protocol of a run: the same traffic seeds and episodes.");
+}

@@ -1,0 +1,196 @@
+"""The Python module's API (docs/python.md): Gymnasium's Env contract, reproducible resets, clear
+errors, and the evaluation protocol. Run by CTest with Debian's /usr/bin/python3 and
+PYTHONPATH=<build folder>."""
+
+import unittest
+
+import numpy as np
+
+import rapid_harness as rh
+
+
+class PendulumEnv(unittest.TestCase):
+    def setUp(self):
+        self.env = rh.Env("pendulum")
+
+    def tearDown(self):
+        self.env.close()
+
+    def test_spaces_are_boxes_of_float32(self):
+        act, obs = self.env.action_space, self.env.observation_space
+        self.assertEqual(act.shape, (1,))
+        self.assertEqual(act.dtype, np.float32)
+        np.testing.assert_array_equal(act.low, [-1.0])
+        np.testing.assert_array_equal(act.high, [1.0])
+        self.assertEqual(obs.shape, (3,))
+        self.assertEqual(obs.dtype, np.float32)
+        self.assertTrue(act.contains(act.sample()))
+
+    def test_reset_and_step_return_gymnasium_tuples(self):
+        obs, info = self.env.reset(seed=3)
+        self.assertIsInstance(obs, np.ndarray)
+        self.assertEqual((obs.dtype, obs.shape), (np.float32, (3,)))
+        self.assertEqual(info, {})
+        self.assertTrue(self.env.observation_space.contains(obs))
+        step = self.env.step(np.zeros(1, dtype=np.float32))
+        self.assertEqual(len(step), 5)
+        nxt, reward, terminated, truncated, info = step
+        self.assertEqual((nxt.dtype, nxt.shape), (np.float32, (3,)))
+        self.assertIsInstance(reward, float)
+        self.assertIs(terminated, False)
+        self.assertIs(truncated, False)
+        self.assertEqual(set(info), {"collision", "ego_speed", "lane_changes", "lane_change_failed"})
+        self.assertIsNot(nxt, obs)  # a fresh array per step: keeping one is safe
+
+    def rollout(self, seed, steps=30):
+        obs, _ = self.env.reset(seed=seed)
+        out = [obs]
+        for t in range(steps):
+            obs, reward, _, _, _ = self.env.step([np.sin(t)])  # a list is an action too
+            out.extend([obs, np.float32(reward)])
+        return out
+
+    def test_reset_with_a_seed_is_reproducible(self):
+        a, b, c = self.rollout(5), self.rollout(5), self.rollout(6)
+        for x, y in zip(a, b):
+            np.testing.assert_array_equal(x, y)
+        self.assertFalse(np.array_equal(a[0], c[0]))
+
+    def test_reset_without_a_seed_starts_the_next_episode(self):
+        first, _ = self.env.reset(seed=1)
+        second, _ = self.env.reset()
+        self.assertFalse(np.array_equal(first, second))
+        again, _ = self.env.reset(seed=1)
+        np.testing.assert_array_equal(first, again)
+
+    def test_the_horizon_truncates_and_does_not_terminate(self):
+        self.env.reset(seed=0)
+        for t in range(1, self.env.horizon + 1):
+            _, _, terminated, truncated, _ = self.env.step([0.0])
+            self.assertFalse(terminated)
+            if truncated:
+                break
+        self.assertEqual(t, self.env.horizon)
+        with self.assertRaisesRegex(RuntimeError, r"call reset\(\) first"):
+            self.env.step([0.0])
+
+    def test_bad_actions_are_refused_by_name(self):
+        with self.assertRaisesRegex(RuntimeError, r"call reset\(\) first"):
+            self.env.step([0.0])
+        self.env.reset(seed=0)
+        with self.assertRaisesRegex(ValueError, r"^step: expected an action of shape \(1,\), got \(2,\)$"):
+            self.env.step(np.zeros(2))
+        with self.assertRaisesRegex(ValueError, "NaN or inf"):
+            self.env.step([float("nan")])
+        with self.assertRaisesRegex(ValueError, "non-negative"):
+            self.env.reset(seed=-1)
+        with self.assertRaisesRegex(ValueError, "no options"):
+            self.env.reset(options={"x": 1})
+
+    def test_a_closed_environment_says_so(self):
+        self.env.close()
+        with self.assertRaisesRegex(RuntimeError, "closed"):
+            self.env.reset()
+
+
+class WrongInputs(unittest.TestCase):
+    def test_a_wrong_scenario_name_is_one_line(self):
+        with self.assertRaises(ValueError) as e:
+            rh.Env("nope")
+        message = str(e.exception)
+        self.assertNotIn("\n", message)
+        self.assertTrue(message.startswith("unknown scenario 'nope'; expected one of lane-drop"), message)
+
+    def test_a_wrong_config_key_or_value_is_named(self):
+        with self.assertRaisesRegex(ValueError, "'nope'"):
+            rh.Env("pendulum", config={"nope": 1})
+        with self.assertRaisesRegex(ValueError, "gamma"):
+            rh.Env("pendulum", config={"gamma": "high"})
+        with self.assertRaisesRegex(ValueError, "dict"):
+            rh.Env("pendulum", config=[1])
+
+    def test_the_lists_match_the_harness(self):
+        self.assertEqual(rh.scenarios()[:3], ["lane-drop", "cut-in", "merge"])
+        self.assertIn("flow", rh.profiles())
+
+
+class DrivingEnv(unittest.TestCase):
+    def test_merge_steps_in_sumo_and_reproduces_its_traffic(self):
+        env = rh.Env("merge")
+        try:
+            runs = []
+            for _ in range(2):
+                obs, _ = env.reset(seed=7)
+                trail = [obs]
+                for _ in range(5):
+                    obs, reward, terminated, truncated, info = env.step(np.array([0.3, 0.0], dtype=np.float32)[: env.action_space.shape[0]])
+                    self.assertTrue(np.all(np.isfinite(obs)))
+                    self.assertIsInstance(info["collision"], bool)
+                    self.assertGreaterEqual(info["ego_speed"], 0.0)
+                    trail += [obs, reward]
+                    if terminated or truncated:
+                        break
+                runs.append(trail)
+            for x, y in zip(*runs):
+                np.testing.assert_array_equal(x, y)
+        finally:
+            env.close()
+
+
+    def test_a_collision_terminates(self):
+        # Standing still on merge's highway, the ego is hit from behind: a true end, not a time limit.
+        env = rh.Env("merge")
+        try:
+            env.reset(seed=0)
+            for t in range(1, env.horizon + 1):
+                _, reward, terminated, truncated, info = env.step(np.zeros(env.action_space.shape, dtype=np.float32))
+                if terminated or truncated:
+                    break
+            self.assertTrue(terminated)
+            self.assertFalse(truncated)
+            self.assertTrue(info["collision"])
+            self.assertLess(t, env.horizon)
+            self.assertLess(reward, 0.0)
+        finally:
+            env.close()
+
+    def test_a_second_simulation_is_refused_not_mixed_in(self):
+        first, second = rh.Env("merge"), rh.Env("lane-drop")
+        try:
+            first.reset(seed=0)
+            second.reset(seed=0)  # libsumo's one simulation is now the lane-drop's
+            with self.assertRaisesRegex(RuntimeError, "one simulation per process"):
+                first.step(np.zeros(first.action_space.shape, dtype=np.float32))
+            first.reset(seed=0)  # takes the simulation back
+            first.step(np.zeros(first.action_space.shape, dtype=np.float32))
+        finally:
+            first.close()
+            second.close()
+
+
+class Evaluate(unittest.TestCase):
+    def test_a_python_policy_is_scored_by_the_evaluation_protocol(self):
+        zero = lambda obs: np.zeros(1, dtype=np.float32)
+        first = rh.evaluate(zero, "pendulum", episodes=3)
+        self.assertEqual(first["episodes"], 3)
+        self.assertEqual(len(first["returns"]), 3)
+        self.assertAlmostEqual(first["return_mean"], float(np.mean(first["returns"])), places=9)
+        self.assertAlmostEqual(first["return_std"], float(np.std(first["returns"])), places=9)
+        self.assertEqual(first, rh.evaluate(zero, "pendulum", episodes=3))  # the same seeds every time
+        # The episodes are the evaluation seeds, not a training episode's traffic.
+        env = rh.Env("pendulum")
+        obs, _ = env.reset(seed=0)
+        seen = []
+        rh.evaluate(lambda o: seen.append(o) or np.zeros(1), "pendulum", episodes=1)
+        self.assertFalse(np.array_equal(seen[0], obs))
+        env.close()
+
+    def test_a_wrong_policy_output_is_named(self):
+        with self.assertRaisesRegex(ValueError, "must return 1 numbers"):
+            rh.evaluate(lambda obs: np.zeros(2), "pendulum", episodes=1)
+        with self.assertRaisesRegex(ValueError, "at least 1"):
+            rh.evaluate(lambda obs: np.zeros(1), "pendulum", episodes=0)
+
+
+if __name__ == "__main__":
+    unittest.main()
