@@ -150,6 +150,42 @@ py::dict load_dataset(const std::string& path) {
   return out;
 }
 
+// Writes a D4RL-layout file (core/dataset_io.hpp: atomic, checksummed) from numpy arrays of N
+// rows each, so that data a Python method collected can be a prior dataset of a run.
+void save_dataset(const std::string& path, const py::dict& arrays, const py::dict& metadata) {
+  using Floats = py::array_t<float, py::array::c_style | py::array::forcecast>;
+  const auto get = [&](const char* key) -> py::object {
+    if (!arrays.contains(key)) throw std::invalid_argument(std::string("save_dataset: missing '") + key + "'");
+    return arrays[key];
+  };
+  const auto matrix = [&](const char* key) -> Mat {
+    const Floats a = Floats::ensure(get(key));
+    if (!a || a.ndim() != 2) throw std::invalid_argument(std::string("save_dataset: '") + key + "' must be a 2-d array of numbers (N rows)");
+    return Eigen::Map<const Mat>(a.data(), a.shape(1), a.shape(0));  // row-major N × d is column-major d × N
+  };
+  const auto flags = [&](const char* key) {
+    const auto a = py::array_t<bool, py::array::c_style | py::array::forcecast>::ensure(get(key));
+    if (!a || a.ndim() != 1) throw std::invalid_argument(std::string("save_dataset: '") + key + "' must be a 1-d array of N flags");
+    return std::vector<bool>(a.data(), a.data() + a.shape(0));
+  };
+  Dataset d;
+  d.observations = matrix("observations");
+  d.actions = matrix("actions");
+  const Floats rewards = Floats::ensure(get("rewards"));
+  if (!rewards || rewards.ndim() != 1) throw std::invalid_argument("save_dataset: 'rewards' must be a 1-d array of N numbers");
+  d.rewards = Eigen::Map<const RowVec>(rewards.data(), rewards.shape(0));
+  d.next_observations = matrix("next_observations");
+  d.terminals = flags("terminals");
+  d.timeouts = flags("timeouts");
+  for (const auto& [key, value] : arrays)
+    if (const std::string k = py::str(key); k != "observations" && k != "actions" && k != "rewards" && k != "next_observations" &&
+                                            k != "terminals" && k != "timeouts" && k != "metadata")
+      throw std::invalid_argument("save_dataset: unknown array '" + k + "'");
+  for (const auto& [key, value] : metadata) d.metadata[py::str(key)] = py::str(value);
+  d.check_shapes();
+  write_dataset(path, d);
+}
+
 // A Python callable obs → action scored by the evaluation protocol every run is scored by
 // (trainer.hpp's evaluate: the evaluation seeds, episodes, one deterministic action per decision).
 py::dict py_evaluate(const py::function& policy, const std::string& scenario, const std::string& profile,
@@ -238,7 +274,11 @@ class Box:
       .def_property_readonly("name", &PyEnv::name)
       .def_readonly("observation_space", &PyEnv::observation_space)
       .def_readonly("action_space", &PyEnv::action_space);
+  // A file that is not a dataset, or does not fit, is a wrong input: ValueError's kind.
+  py::register_exception<DatasetError>(m, "DatasetError", PyExc_ValueError);
   m.def("load_dataset", &load_dataset, py::arg("path"), "A D4RL-layout HDF5 file as numpy arrays and its metadata.");
+  m.def("save_dataset", &save_dataset, py::arg("path"), py::arg("arrays"), py::arg("metadata") = py::dict(),
+        "Writes numpy arrays (observations, actions, rewards, next_observations, terminals, timeouts) as a D4RL-layout file.");
   m.def("evaluate", &py_evaluate, py::arg("policy"), py::arg("scenario"), py::arg("profile") = std::string(kDefaultProfile),
         py::arg("config") = py::none(), py::arg("episodes") = py::none(),
         "Scores a policy (obs -> action) by the evaluation protocol of a run: the same traffic seeds and episodes.");

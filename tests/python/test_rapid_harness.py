@@ -2,6 +2,8 @@
 errors, and the evaluation protocol. Run by CTest with Debian's /usr/bin/python3 and
 PYTHONPATH=<build folder>."""
 
+import os
+import tempfile
 import unittest
 
 import numpy as np
@@ -166,6 +168,53 @@ class DrivingEnv(unittest.TestCase):
         finally:
             first.close()
             second.close()
+
+
+class Datasets(unittest.TestCase):
+    def arrays(self, n=50):
+        rng = np.random.default_rng(0)
+        return {
+            "observations": rng.standard_normal((n, 3)).astype(np.float32),
+            "actions": rng.uniform(-1, 1, (n, 1)).astype(np.float32),
+            "rewards": rng.standard_normal(n).astype(np.float32),
+            "next_observations": rng.standard_normal((n, 3)).astype(np.float32),
+            "terminals": np.arange(n) == 24,
+            "timeouts": np.arange(n) == n - 1,
+        }
+
+    def test_a_dataset_round_trips_through_the_harness_file_format(self):
+        data = self.arrays()
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "prior.h5")
+            rh.save_dataset(path, data, {"scenario": "pendulum"})
+            back = rh.load_dataset(path)
+        for key, value in data.items():
+            self.assertEqual(back[key].dtype, value.dtype, key)
+            np.testing.assert_array_equal(back[key], value, key)
+        self.assertEqual(back["metadata"]["scenario"], "pendulum")
+        self.assertFalse(back["observations"].flags["OWNDATA"])  # a view of the read dataset, not a copy
+        observations = back["observations"]
+        del back
+        np.testing.assert_array_equal(observations, data["observations"])  # the view keeps its dataset alive
+
+    def test_wrong_arrays_and_files_are_named(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "prior.h5")
+            data = self.arrays()
+            del data["rewards"]
+            with self.assertRaisesRegex(ValueError, "missing 'rewards'"):
+                rh.save_dataset(path, data)
+            data = self.arrays()
+            data["actions"] = data["actions"][:10]
+            with self.assertRaisesRegex(ValueError, "actions"):
+                rh.save_dataset(path, data)
+            data = self.arrays()
+            data["rewards"][3] = np.nan
+            with self.assertRaises(rh.DatasetError):
+                rh.save_dataset(path, data)
+            self.assertFalse(os.path.exists(path))  # nothing half-written
+            with self.assertRaisesRegex(ValueError, "nowhere.h5"):
+                rh.load_dataset(os.path.join(d, "nowhere.h5"))
 
 
 class Evaluate(unittest.TestCase):
