@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "algos/registry.hpp"
+#include "core/contains.hpp"
 #include "experiments/report/format.hpp"
 #include "experiments/run/dataset_build.hpp"
 
@@ -10,27 +11,23 @@ namespace rapid {
 
 namespace {
 
-bool has(const std::vector<std::string>& names, const std::string& x) {
-  return std::find(names.begin(), names.end(), x) != names.end();
-}
-
 std::string row_label(const TableRow& row) { return row.scenario + " / " + row.dataset; }
 
 bool row_wanted(const ClaimSpec& spec, const TableRow& row) {
-  return (spec.datasets.empty() || has(spec.datasets, row.dataset)) &&
-         (spec.scenarios.empty() || has(spec.scenarios, row.scenario));
+  return (spec.datasets.empty() || contains(spec.datasets, row.dataset)) &&
+         (spec.scenarios.empty() || contains(spec.scenarios, row.scenario));
 }
 
 bool compared_against(const ClaimSpec& spec, const std::string& algo) {
-  return spec.against.empty() ? is_paper_baseline(algo) : has(spec.against, algo) && algo != spec.algo;
+  return spec.against.empty() ? is_paper_baseline(algo) : contains(spec.against, algo) && algo != spec.algo;
 }
 
 // What the grid lacks for the claim, in the order scenario, algorithms, datasets; empty if nothing.
 std::string missing(const ClaimSpec& spec, const Summary& s) {
   for (const std::string& scenario : spec.named_scenarios())
-    if (!has(s.grid.scenarios, scenario)) return "the grid has no " + scenario + " scenario";
+    if (!contains(s.grid.scenarios, scenario)) return "the grid has no " + scenario + " scenario";
   for (const std::string& algo : {spec.algo, spec.other})
-    if (!algo.empty() && !has(s.grid.algos, algo)) return "the grid has no " + algo;
+    if (!algo.empty() && !contains(s.grid.algos, algo)) return "the grid has no " + algo;
   if (spec.kind == ClaimKind::kMostRows &&
       std::none_of(s.grid.algos.begin(), s.grid.algos.end(), [&](const std::string& a) { return compared_against(spec, a); }))
     return "the grid has no other algorithm to compare with";
@@ -42,18 +39,17 @@ std::string missing(const ClaimSpec& spec, const Summary& s) {
   };
   std::stable_sort(datasets.begin(), datasets.end(), [&](const auto& a, const auto& b) { return rank(a) < rank(b); });
   for (const std::string& d : datasets)
-    if (!has(s.grid.datasets, d)) return "the grid has no " + d + " dataset";
+    if (!contains(s.grid.datasets, d)) return "the grid has no " + d + " dataset";
   return "";
 }
 
-PlannedComparison two_cells(std::string where, const ClaimSpec& spec, std::string x_algo, std::string x,
+PlannedComparison two_cells(std::string where, const ClaimSpec& spec, std::string x,
                             const CellSummary* x_cell, std::string y_algo, std::string y, const CellSummary* y_cell,
                             std::string delta_scenario) {
   PlannedComparison c;
   c.where = std::move(where);
   c.metric = claim_metric_name(spec.metric);
   c.measure = spec.metric;
-  c.x_algo = std::move(x_algo);
   c.x = std::move(x);
   c.x_cell = x_cell;
   c.y_algo = std::move(y_algo);
@@ -74,10 +70,10 @@ void plan_rows(const ClaimSpec& spec, const Summary& s, ClaimPlan& plan) {
     if (spec.kind == ClaimKind::kMostRows) {
       for (const auto& [algo, index] : row.cells)
         if (compared_against(spec, algo))
-          g.comparisons.push_back(two_cells(g.label, spec, spec.algo, algo_display_name(spec.algo), g.subject, algo,
+          g.comparisons.push_back(two_cells(g.label, spec, algo_display_name(spec.algo), g.subject, algo,
                                             algo_display_name(algo), &s.cells[index], row.scenario));
     } else {
-      PlannedComparison c = two_cells(g.label, spec, spec.algo, algo_display_name(spec.algo), g.subject, spec.other,
+      PlannedComparison c = two_cells(g.label, spec, algo_display_name(spec.algo), g.subject, spec.other,
                                       algo_display_name(spec.other), s.column_cell(row, spec.other), row.scenario);
       c.wanted = spec.above ? ComparisonOutcome::kXBetter : ComparisonOutcome::kYBetter;
       g.comparisons.push_back(std::move(c));
@@ -89,10 +85,10 @@ void plan_rows(const ClaimSpec& spec, const Summary& s, ClaimPlan& plan) {
 void plan_dataset_order(const ClaimSpec& spec, const Summary& s, ClaimPlan& plan) {
   const std::string name = algo_display_name(spec.algo);
   for (const std::string& scenario : s.grid.scenarios) {
-    if (!spec.scenarios.empty() && !has(spec.scenarios, scenario)) continue;
+    if (!spec.scenarios.empty() && !contains(spec.scenarios, scenario)) continue;
     PlannedGroup g;
     g.label = scenario;
-    g.comparisons.push_back(two_cells(scenario, spec, spec.algo, name + " " + dataset_display_name(spec.above_dataset),
+    g.comparisons.push_back(two_cells(scenario, spec, name + " " + dataset_display_name(spec.above_dataset),
                                       s.find(scenario, spec.above_dataset, spec.algo), spec.algo,
                                       name + " " + dataset_display_name(spec.below), s.find(scenario, spec.below, spec.algo),
                                       scenario));
@@ -133,7 +129,7 @@ void plan_bc_windows(const ClaimSpec& spec, const Summary& s, ClaimPlan& plan) {
     c.dataset = w.dataset;
     c.x = "prior";
     c.y = "online";
-    c.x_algo = c.y_algo = spec.algo;
+    c.y_algo = spec.algo;
     c.x_cell = c.y_cell = cell;
     // The larger loss is the "better" side of the test: prior below online is y better.
     c.wanted = w.prior_below ? ComparisonOutcome::kYBetter : ComparisonOutcome::kXBetter;

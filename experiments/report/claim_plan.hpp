@@ -18,7 +18,7 @@ struct PlannedComparison {
   ClaimMetric measure = ClaimMetric::kFinalReturn;  // of each side's cell, unless bc_loss
   bool bc_loss = false;  // bc_windows: the cell's prior BC loss (x) against its online one (y)
   std::string dataset;   // bc_windows: the window's dataset
-  std::string x_algo, y_algo;  // the algorithms behind x and y (bc_windows: the claim's, twice)
+  std::string y_algo;  // the algorithm behind y (bc_windows: the claim's)
   const CellSummary* x_cell = nullptr;  // nullptr: the grid has the cell's place but no cell
   const CellSummary* y_cell = nullptr;  // bc_windows: the same cell as x (prior against online)
   ComparisonOutcome wanted = ComparisonOutcome::kXBetter;

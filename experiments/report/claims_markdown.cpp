@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "algos/registry.hpp"
+#include "core/contains.hpp"
 #include "core/printable.hpp"
 #include "experiments/report/adaptive_seeds.hpp"
 #include "experiments/report/claims.hpp"
@@ -38,7 +39,7 @@ std::string markdown_table(const ClaimResult& c) {
 std::string non_paper_note(const Summary& s) {
   std::string names;
   for (const Algorithm& a : algorithms())
-    if (!a.in_paper && std::find(s.grid.algos.begin(), s.grid.algos.end(), a.name) != s.grid.algos.end())
+    if (!a.in_paper && contains(s.grid.algos, a.name))
       names += (names.empty() ? "" : ", ") + a.display_name;
   if (names.empty()) return "";
   return "The grid also has " + names +

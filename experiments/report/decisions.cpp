@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "algos/registry.hpp"
+#include "core/contains.hpp"
 #include "experiments/report/claim_plan.hpp"
 #include "experiments/report/curves.hpp"
 #include "experiments/report/format.hpp"
@@ -20,10 +21,6 @@ namespace rapid {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-bool has(const std::vector<std::string>& names, const std::string& x) {
-  return std::find(names.begin(), names.end(), x) != names.end();
-}
 
 // A claim's groups as indices into the family's comparisons.
 struct IndexedClaim {
@@ -306,7 +303,7 @@ std::vector<std::string> published_baselines(const Summary& s) {
 
 std::optional<Decisions> decide_published_baselines(const Summary& s, const DecisionSettings& settings) {
   const std::vector<std::string> baselines = published_baselines(s);
-  if (baselines.empty() || !has(s.grid.algos, kRapidRl) || !s.grid.axes.empty()) return std::nullopt;
+  if (baselines.empty() || !contains(s.grid.algos, kRapidRl) || !s.grid.axes.empty()) return std::nullopt;
   const FrozenComparisons none;
   Builder b(s, settings, none);
   b.published_baselines(baselines);

@@ -8,6 +8,7 @@
 
 #include "algos/rapid_rl.hpp"  // kEpsilon: the report shows each scenario's ε
 #include "algos/registry.hpp"
+#include "core/contains.hpp"
 #include "core/hash.hpp"
 #include "core/json_input.hpp"
 #include "experiments/report/adaptive_seeds.hpp"
@@ -39,14 +40,14 @@ BootstrapOptions bootstrap_options(const BootstrapSettings& s, int replicates, c
 std::vector<std::string> ordered_algos(const Grid& grid) {
   std::vector<std::string> out;
   for (const std::string& a : algo_names())
-    if (std::find(grid.algos.begin(), grid.algos.end(), a) != grid.algos.end()) out.push_back(a);
+    if (contains(grid.algos, a)) out.push_back(a);
   return out;
 }
 
 std::vector<std::string> ordered_datasets(const Grid& grid) {
   std::vector<std::string> out;
   for (const std::string& d : dataset_names())
-    if (std::find(grid.datasets.begin(), grid.datasets.end(), d) != grid.datasets.end()) out.push_back(d);
+    if (contains(grid.datasets, d)) out.push_back(d);
   return out;
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "algos/registry.hpp"
+#include "core/contains.hpp"
 #include "experiments/report/summary.hpp"
 #include "experiments/run/json_numbers.hpp"
 
@@ -127,7 +128,7 @@ nlohmann::json summary_to_json(const Summary& s) {
   // and colours its lines with, and which one is RAPID-RL (Figure 3(b)'s).
   j["algorithms"] = nlohmann::json::array();
   for (const Algorithm& a : algorithms())
-    if (std::find(s.grid.algos.begin(), s.grid.algos.end(), a.name) != s.grid.algos.end())
+    if (contains(s.grid.algos, a.name))
       j["algorithms"].push_back({{"name", a.name}, {"label", a.display_name}, {"colour", a.colour},
                                  {"uses_prior", a.uses_prior}, {"in_paper", a.in_paper}, {"variant", a.variant},
                                  {"ours", a.name == kRapidRl}});

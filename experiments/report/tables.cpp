@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "algos/registry.hpp"
+#include "core/contains.hpp"
 #include "experiments/report/format.hpp"
 
 namespace rapid {
@@ -16,7 +17,7 @@ namespace {
 std::vector<std::string> columns(const Summary& s) {
   std::vector<std::string> out;
   for (const std::string& a : algo_names())
-    if (std::find(s.grid.algos.begin(), s.grid.algos.end(), a) != s.grid.algos.end()) out.push_back(a);
+    if (contains(s.grid.algos, a)) out.push_back(a);
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "core/contains.hpp"
 #include "core/json_input.hpp"
 #include "core/printable.hpp"
 
@@ -202,7 +203,7 @@ ClaimSpec parse_claim(const json& j, const std::string& field) {
       c.algo = text(j, "algo", field);
       if (!j.contains("against")) fail(field + ".against", "missing (\"paper baselines\" or an array of algorithms)");
       if (j["against"] != "paper baselines") c.against = names(j, "against", field);
-      if (std::find(c.against.begin(), c.against.end(), c.algo) != c.against.end())
+      if (contains(c.against, c.algo))
         fail(field + ".against", "names " + c.algo + ", the claim's own algorithm");
       const json& share = j.contains("share") ? j["share"] : json::array({1, 1});
       if (!share.is_array() || share.size() != 2 || !share[0].is_number_unsigned() || !share[1].is_number_unsigned() ||

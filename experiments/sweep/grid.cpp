@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "algos/registry.hpp"
+#include "core/contains.hpp"
 #include "core/printable.hpp"
 #include "envs/env.hpp"
 #include "envs/scenario_descriptor.hpp"
@@ -85,7 +86,7 @@ class GridChecker {
       const std::string s = axis[i].get<std::string>();
       if (std::find(allowed.begin(), allowed.end(), s) == allowed.end())
         fail(at, "unknown " + what + " '" + s + "'; expected one of " + comma_joined(allowed));
-      if (std::find(out.begin(), out.end(), s) != out.end()) fail(at, "duplicate " + what + " '" + s + "'");
+      if (contains(out, s)) fail(at, "duplicate " + what + " '" + s + "'");
       out.push_back(s);
     }
     return out;
@@ -162,7 +163,7 @@ ReferenceSettings parse_reference(const GridChecker& check, const json& ref, con
   check.only_known_keys(ref, kReferenceKeys, "reference");
   ReferenceSettings r;
   if (ref.contains("seed")) r.seed = check.non_negative_integer(ref["seed"], "reference.seed");
-  if (needed && std::find(seeds.begin(), seeds.end(), r.seed) != seeds.end())
+  if (needed && contains(seeds, r.seed))
     check.fail("reference.seed", std::to_string(r.seed) + " is also an evaluation seed; the reference agent needs its own");
   if (ref.contains("transitions")) {
     const std::uint64_t t = check.non_negative_integer(ref["transitions"], "reference.transitions");
