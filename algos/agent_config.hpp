@@ -1,6 +1,7 @@
 // Hyper-parameters of the actor-critic backbone. Each field, and each method key, is a row of the
 // run config's key table (experiments/run/config_keys.cpp: what it means, which values it
-// accepts); the values runs use come from experiments/configs/<scenario>.json. There are no
+// accepts); the values runs use come from a profile's config (experiments/configs/<profile>/shared.json
+// and each scenario's own, in its scenario.json). There are no
 // defaults here on purpose: a value that does not come from a config file must never reach a run
 // unnoticed.
 #pragma once

@@ -1,5 +1,5 @@
-// The environment interface every task implements: the three SUMO driving scenarios and the
-// SUMO-free pendulum. Observations are written into a caller-owned vector so that a step
+// The environment interface every task implements: the SUMO driving scenarios and the SUMO-free
+// pendulum. Observations are written into a caller-owned vector so that a step
 // allocates nothing.
 #pragma once
 
@@ -55,8 +55,13 @@ class Env {
   virtual void record(Trace* trace);
 };
 
-// Names accepted by make_env, in a stable order.
-const std::vector<std::string>& env_names();
+// Names accepted by make_env: the built-in driving scenarios (builtin_scenario_names(), by name),
+// then the pendulum.
+std::vector<std::string> env_names();
+// Throws std::invalid_argument("unknown scenario '…'; expected one of … or a scenario file (.json)",
+// naming where the built networks were looked for if there are none) unless `name` is a built-in
+// scenario, a scenario file or a name a grid registered for one.
+void check_scenario_name(const std::string& name);
 // Throws std::invalid_argument("unknown scenario '…'; expected one of …") for an unknown name.
 // Driving scenarios get their `short` profile settings.
 std::unique_ptr<Env> make_env(const std::string& name);
@@ -69,8 +74,8 @@ std::unique_ptr<Env> make_env(const std::string& name, const ScenarioSettings& s
 // file F does not run in SUMO: <SUMO's first line>"); SUMO's own messages are kept off stderr.
 // Built-in scenarios and the pendulum are not probed (their files ship with the harness and are tested).
 void check_scenario_runs(const std::string& name, const ScenarioSettings& settings);
-// lane-drop, cut-in, merge and scenario files (a path, or a name a grid registered): the scenarios
-// that take ScenarioSettings.
+// The built-in driving scenarios and scenario files (a path, or a name a grid registered): the
+// scenarios that take ScenarioSettings.
 bool is_driving_scenario(const std::string& name);
 // One of env_names(): shipped with the harness, not a scenario file.
 bool is_builtin_scenario(const std::string& name);

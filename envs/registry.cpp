@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/contains.hpp"
 #include "core/printable.hpp"
 #include "envs/driving_env.hpp"
 #include "envs/env.hpp"
@@ -20,34 +21,43 @@ void Env::set_builtin_driver(bool) {
 
 void Env::record(Trace*) { throw std::invalid_argument("scenario '" + name() + "' has no road or traffic to record"); }
 
-const std::vector<std::string>& env_names() {
-  static const std::vector<std::string> names = {"lane-drop", "cut-in", "merge", "pendulum"};
+std::vector<std::string> env_names() {
+  // The driving scenarios shipped as descriptor files beside the built networks (read afresh: a
+  // test or a tool may point RAPID_NETWORK_DIR elsewhere), then the SUMO-free pendulum (a C++
+  // environment, not a road).
+  std::vector<std::string> names = builtin_scenario_names();
+  names.push_back("pendulum");
   return names;
 }
 
-bool is_builtin_scenario(const std::string& name) {
-  const auto& names = env_names();
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
+bool is_builtin_scenario(const std::string& name) { return name == "pendulum" || contains(builtin_scenario_names(), name); }
 
 bool is_driving_scenario(const std::string& name) {
-  return name == "lane-drop" || name == "cut-in" || name == "merge" || is_scenario_file(name) ||
-         is_registered_scenario(name);
+  return (name != "pendulum" && is_builtin_scenario(name)) || is_scenario_file(name) || is_registered_scenario(name);
 }
 
 std::unique_ptr<Env> make_env(const std::string& name) {
   if (name == "pendulum") return std::make_unique<PendulumEnv>();
-  if (is_driving_scenario(name)) return make_env(name, default_scenario_settings(name));
-  return make_env(name, ScenarioSettings{});  // throws: unknown
+  check_scenario_name(name);
+  return make_env(name, default_scenario_settings(name));
+}
+
+void check_scenario_name(const std::string& name) {
+  if (is_builtin_scenario(name) || is_driving_scenario(name)) return;
+  const std::vector<std::string> names = env_names();
+  std::string known;
+  for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+  // Without the built networks there is no built-in road at all: say where they were looked for.
+  const std::string none_built = names.size() > 1 ? "" : "; no built-in scenario in " + network_dir() +
+                                                               ": build the 'rapid_networks' target or set RAPID_NETWORK_DIR";
+  throw std::invalid_argument("unknown scenario '" + printable(name) + "'; expected one of " + known +
+                              " or a scenario file (.json)" + none_built);
 }
 
 std::unique_ptr<Env> make_env(const std::string& name, const ScenarioSettings& settings) {
+  check_scenario_name(name);
   if (is_driving_scenario(name)) return make_driving_env(name, settings);
-  if (name == "pendulum") throw std::invalid_argument("scenario 'pendulum' takes no driving settings");
-  std::string known;
-  for (const auto& n : env_names()) known += (known.empty() ? "" : ", ") + n;
-  throw std::invalid_argument("unknown scenario '" + printable(name) + "'; expected one of " + known +
-                              " or a scenario file (.json)");
+  throw std::invalid_argument("scenario 'pendulum' takes no driving settings");
 }
 
 void check_scenario_runs(const std::string& name, const ScenarioSettings& settings) {

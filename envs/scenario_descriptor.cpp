@@ -1,5 +1,6 @@
 #include "envs/scenario_descriptor.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -28,6 +29,16 @@ using nlohmann::json;
 std::string network_dir() {
   if (const char* dir = std::getenv("RAPID_NETWORK_DIR"); dir != nullptr && *dir != '\0') return dir;
   return RAPID_NETWORK_DIR;
+}
+
+std::vector<std::string> builtin_scenario_names() {
+  std::vector<std::string> names;
+  std::error_code error;  // no folder: no built-in scenario (scenario_descriptor says what to build)
+  for (const auto& entry : fs::directory_iterator(network_dir(), error))
+    if (entry.is_directory(error) && fs::is_regular_file(entry.path() / "scenario.json", error))
+      names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
 }
 
 const std::vector<std::string>& feature_kind_names() {

@@ -137,4 +137,8 @@ std::string scenario_files_hash(const ScenarioDescriptor& d);
 // build's networks/ folder (compiled in).
 std::string network_dir();
 
+// The built-in driving scenarios: every folder of network_dir() that holds a scenario.json (the
+// build copies envs/networks/<name>/scenario.json there), by name. No list of them is kept in code.
+std::vector<std::string> builtin_scenario_names();
+
 }  // namespace rapid

@@ -1,7 +1,7 @@
 // The knobs of a driving scenario that a run's config may set: control rate, horizon, traffic,
 // obstacles, the desired speed and the reward variant. The defaults are the `short` profile (the
 // scenarios as first built: 0.5 s decisions, 150 per episode); the `flow` profile sets them to the
-// paper's scale (docs/scenarios.md). A test holds experiments/configs/short/ to these defaults.
+// paper's scale (docs/scenarios.md). A test holds the short profile's configs to these defaults.
 #pragma once
 
 #include <string>

@@ -25,19 +25,20 @@ namespace py = pybind11;
 namespace rapid {
 namespace {
 
-// The run config of `scenario` in `profile` with `overrides` (a dict of config keys) on top, as
+// The config of `scenario` in `profile` with `overrides` (a dict of config keys) on top, as
 // `rapid run --set` would resolve it.
-RunConfig python_run_config(const std::string& scenario, const std::string& profile, const py::object& overrides) {
-  // An unknown name: make_env's one line, which lists the names ("unknown scenario 'x'; expected …").
-  if (!is_builtin_scenario(scenario) && !is_driving_scenario(scenario)) make_env(scenario, ScenarioSettings{});
-  check_profile(profile, scenario);
-  std::vector<ConfigLayer> layers = default_config_layers(scenario, profile);
+ParsedConfig python_config(const std::string& scenario, const std::string& profile, const py::object& overrides) {
+  std::vector<ConfigLayer> layers;
   if (!overrides.is_none()) {
     if (!py::isinstance<py::dict>(overrides)) throw std::invalid_argument("config: expected a dict of config keys");
     const std::string text = py::module_::import("json").attr("dumps")(overrides).cast<std::string>();
     layers.push_back({"config", nlohmann::json::parse(text)});
   }
-  return run_config_from_json(merge_layers(layers, scenario), scenario);
+  return resolve_run_config(scenario, profile, layers);
+}
+
+RunConfig python_run_config(const std::string& scenario, const std::string& profile, const py::object& overrides) {
+  return python_config(scenario, profile, overrides).run;
 }
 
 // A Box space: gymnasium's when it can be imported, else an object with its attributes.
@@ -54,7 +55,8 @@ py::object box(int n, float low, float high) {
 class PyEnv {
  public:
   PyEnv(const std::string& scenario, const std::string& profile, const py::object& config)
-      : config_(python_run_config(scenario, profile, config)), env_(make_run_env(scenario, config_)) {
+      : config_(python_run_config(scenario, profile, config)),
+        env_(make_run_env(scenario, config_)) {
     observation_space = box(env_->obs_dim(), -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity());
     action_space = box(env_->act_dim(), -1.0f, 1.0f);
   }
@@ -264,6 +266,13 @@ class Box:
            m.attr("__dict__"));
   m.def("scenarios", [] { return env_names(); }, "The built-in scenario names (a scenario file's path works too).");
   m.def("profiles", [] { return config_profiles(); }, "The config profiles (short, flow).");
+  m.def(
+      "config",
+      [](const std::string& scenario, const std::string& profile, const py::object& overrides) {
+        return py::module_::import("json").attr("loads")(python_config(scenario, profile, overrides).json.dump());
+      },
+      py::arg("scenario"), py::arg("profile") = std::string(kDefaultProfile), py::arg("config") = py::none(),
+      "The resolved config (a dict) an Env or a run of the scenario in the profile has, with `config` on top.");
   py::class_<PyEnv>(m, "Env", "A scenario as a Gymnasium-style environment.")
       .def(py::init<const std::string&, const std::string&, const py::object&>(), py::arg("scenario"),
            py::arg("profile") = std::string(kDefaultProfile), py::arg("config") = py::none())

@@ -26,12 +26,19 @@ std::string read_doc(const std::string& name) {
   return text.str();
 }
 
-// (profile, scenario) for every config file: the short profile's scenarios, then the flow profile's.
+// (profile, scenario) for every built-in scenario's config in every profile it has: the short
+// profile's scenarios, then the flow profile's.
 std::vector<std::pair<std::string, std::string>> config_files() {
   std::vector<std::pair<std::string, std::string>> files;
   for (const std::string& p : config_profiles())
-    for (const std::string& s : env_names())
-      if (std::ifstream(std::string(RAPID_SOURCE_DIR) + "/experiments/configs/" + p + "/" + s + ".json")) files.emplace_back(p, s);
+    for (const std::string& s : env_names()) {
+      try {
+        check_profile(p, s);
+      } catch (const std::invalid_argument&) {
+        continue;  // no such profile for this scenario (the pendulum's flow)
+      }
+      files.emplace_back(p, s);
+    }
   return files;
 }
 

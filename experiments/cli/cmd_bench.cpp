@@ -8,6 +8,7 @@
 #include "algos/registry.hpp"
 #include "core/atomic_file.hpp"
 #include "envs/env.hpp"
+#include "envs/scenario_descriptor.hpp"
 #include "experiments/bench/results.hpp"
 #include "experiments/bench/timing.hpp"
 #include "experiments/cli/checks.hpp"
@@ -53,7 +54,7 @@ BenchPlan make_plan(bool quick) {
 }
 
 int run_bench(const BenchOptions& o) {
-  std::vector<std::string> scenarios = {"lane-drop", "cut-in", "merge"};
+  std::vector<std::string> scenarios = builtin_scenario_names();
   if (!o.scenario.empty()) {
     check_option("--scenario", [&] { make_env(o.scenario); });
     scenarios = {o.scenario};
@@ -138,7 +139,7 @@ Command add_bench_command(CLI::App& parent) {
   auto opts = std::make_shared<BenchOptions>();
   CLI::App* sub = parent.add_subcommand(
       "bench", "Measure env, update, end-to-end and sweep speed against their limits");
-  sub->add_option("--scenario", opts->scenario, "one scenario (default: lane-drop, cut-in and merge)");
+  sub->add_option("--scenario", opts->scenario, "one scenario (default: every built-in driving scenario)");
   sub->add_option("--json", opts->json_file, "also write the results as one JSON object to FILE");
   sub->add_option("--train-algo", opts->train_algo, "algorithm of the end-to-end training run: " + names_or(algo_names()))
       ->capture_default_str();

@@ -2,7 +2,8 @@
 // exist, which part of a run each configures, the field it fills, the values it accepts and what
 // it means. Parsing, validation, grid overrides and `--set` (run_config.hpp) read this table, and
 // the key table of docs/algorithms.md is generated from it (tests/test_configs.cpp fails when they
-// differ). The values runs use live in the scenario's file, experiments/configs/<scenario>.json.
+// differ). The values runs use live in the profile's shared file, experiments/configs/<profile>/
+// shared.json, and in each scenario's descriptor (its "profiles" entry).
 #pragma once
 
 #include <functional>

@@ -29,72 +29,8 @@ bool is_scenario_from_file(const std::string& scenario) {
   return is_driving_scenario(scenario) && !is_builtin_scenario(scenario);
 }
 
-std::string config_path(const std::string& scenario, const std::string& profile) {
-  return config_dir() + "/" + profile + "/" + scenario + ".json";
-}
-}  // namespace
-
-void check_profile(const std::string& profile, const std::string& scenario) {
-  const auto& names = config_profiles();
-  if (std::find(names.begin(), names.end(), profile) == names.end())
-    throw std::invalid_argument("unknown profile '" + profile + "' (profiles: " + comma_joined(names) + ")");
-  if (is_scenario_from_file(scenario)) {
-    if (!scenario_descriptor(scenario)->profiles.contains(profile))
-      throw std::invalid_argument("scenario file " + scenario + " has no '" + profile + "' profile (profiles." +
-                                  profile + " is missing)");
-    return;
-  }
-  if (!std::filesystem::exists(config_path(scenario, profile)))
-    throw std::invalid_argument("scenario '" + scenario + "' has no '" + profile + "' profile");
-}
-
-nlohmann::json shared_profile_config(const std::string& profile) {
-  std::optional<nlohmann::json> shared;
-  for (const std::string& scenario : env_names()) {
-    if (!is_driving_scenario(scenario) || !std::filesystem::exists(config_path(scenario, profile))) continue;
-    const nlohmann::json config = default_config_json(scenario, profile);
-    if (!shared) {
-      shared = nlohmann::json::object();
-      for (const auto& [key, value] : config.items()) {
-        const ConfigKey* k = find_config_key(key);
-        if (k != nullptr && k->part != ConfigPart::kScenario) (*shared)[key] = value;
-      }
-      continue;
-    }
-    for (auto it = shared->begin(); it != shared->end();)
-      it = config.contains(it.key()) && config.at(it.key()) == it.value() ? std::next(it) : shared->erase(it);
-  }
-  if (!shared) throw std::invalid_argument("profile '" + profile + "' has no driving scenario");
-  return *shared;
-}
-
-namespace {
-// A scenario file's layers in `profile`: the profile's shared keys, the descriptor's settings as
-// the scenario keys, then the descriptor's keys for that profile (checked here, as a whole).
-std::vector<ConfigLayer> file_scenario_layers(const std::string& scenario, const std::string& profile) {
-  check_profile(profile, scenario);
-  const auto descriptor = scenario_descriptor(scenario);
-  ConfigLayer shared{"profile " + profile + " (the keys its built-in scenarios share)", shared_profile_config(profile)};
-  ConfigLayer settings{"scenario file " + scenario, nlohmann::json::object()};
-  RunConfig with_defaults;
-  with_defaults.scenario = descriptor->defaults;
-  for (const ConfigKey& key : config_keys())
-    if (key.part == ConfigPart::kScenario && key.applies_to(scenario))
-      settings.values[key.name] = key.write(with_defaults);
-  ConfigLayer own{"scenario file " + scenario + ": profiles." + profile, descriptor->profiles.at(profile)};
-  nlohmann::json config = shared.values;
-  config.update(settings.values);
-  apply_overrides(config, own.values, scenario, own.origin);
-  for (const ConfigKey& key : config_keys())
-    if (!key.optional() && key.applies_to(scenario) && !config.contains(key.name))
-      throw std::invalid_argument(own.origin + ": must give '" + key.name + "' (the profile's scenarios differ in it)");
-  return {std::move(shared), std::move(settings), std::move(own)};
-}
-}  // namespace
-
-std::vector<ConfigLayer> default_config_layers(const std::string& scenario, const std::string& profile) {
-  if (is_scenario_from_file(scenario)) return file_scenario_layers(scenario, profile);
-  const std::string path = config_path(scenario, profile);
+// A config file of the profile's folder, which must be a JSON object.
+nlohmann::json read_config_file(const std::string& path) {
   nlohmann::json j;
   try {
     j = read_json_input(path);
@@ -102,7 +38,87 @@ std::vector<ConfigLayer> default_config_layers(const std::string& scenario, cons
     throw std::runtime_error("config file " + path + ": " + e.what());
   }
   if (!j.is_object()) throw std::runtime_error("config file " + path + ": not a JSON object");
-  return {{"config file " + path, std::move(j)}};
+  return j;
+}
+
+std::string shared_config_path(const std::string& profile) { return config_dir() + "/" + profile + "/shared.json"; }
+// The config of a scenario that is no driving scenario (the pendulum): a file of its own.
+std::string own_config_path(const std::string& scenario, const std::string& profile) {
+  return config_dir() + "/" + profile + "/" + scenario + ".json";
+}
+}  // namespace
+
+void check_profile(const std::string& profile, const std::string& scenario) {
+  check_scenario_name(scenario);
+  const auto& names = config_profiles();
+  if (std::find(names.begin(), names.end(), profile) == names.end())
+    throw std::invalid_argument("unknown profile '" + profile + "' (profiles: " + comma_joined(names) + ")");
+  if (!is_driving_scenario(scenario)) {
+    if (!std::filesystem::exists(own_config_path(scenario, profile)))
+      throw std::invalid_argument("scenario '" + scenario + "' has no '" + profile + "' profile");
+    return;
+  }
+  if (!scenario_descriptor(scenario)->profiles.contains(profile)) {
+    if (is_scenario_from_file(scenario))
+      throw std::invalid_argument("scenario file " + scenario + " has no '" + profile + "' profile (profiles." + profile +
+                                  " is missing)");
+    throw std::invalid_argument("scenario '" + scenario + "' has no '" + profile + "' profile");
+  }
+}
+
+nlohmann::json shared_profile_config(const std::string& profile) {
+  nlohmann::json shared = read_config_file(shared_config_path(profile));
+  for (auto it = shared.begin(); it != shared.end();) {
+    const ConfigKey* k = find_config_key(it.key());
+    it = k != nullptr && k->part != ConfigPart::kScenario ? std::next(it) : shared.erase(it);
+  }
+  return shared;
+}
+
+namespace {
+// A driving scenario's layers in `profile`: the profile's shared keys (experiments/configs/<profile>/
+// shared.json), then the descriptor's keys for that profile (checked here, as a whole). A scenario
+// file's layers put its descriptor's settings, written out as scenario keys, between the two and
+// take only the shared agent and schedule keys: its road is its own. A built-in scenario's settings
+// stay the descriptor's defaults, unwritten (run_config_from_json starts from them), and the
+// shared file's scenario keys apply to it: so its resolved config, and every record's hash, is what
+// it was when each built-in had a config file per profile.
+std::vector<ConfigLayer> driving_scenario_layers(const std::string& scenario, const std::string& profile) {
+  check_profile(profile, scenario);
+  const auto descriptor = scenario_descriptor(scenario);
+  const bool from_file = is_scenario_from_file(scenario);
+  const std::string path = shared_config_path(profile);
+  std::vector<ConfigLayer> layers;
+  if (from_file) {
+    layers.push_back({"profile " + profile + " (" + path + ", its agent and schedule keys)", shared_profile_config(profile)});
+    ConfigLayer settings{"scenario file " + scenario, nlohmann::json::object()};
+    RunConfig with_defaults;
+    with_defaults.scenario = descriptor->defaults;
+    for (const ConfigKey& key : config_keys())
+      if (key.part == ConfigPart::kScenario && key.applies_to(scenario))
+        settings.values[key.name] = key.write(with_defaults);
+    layers.push_back(std::move(settings));
+  } else {
+    layers.push_back({"profile " + profile + " (" + path + ")", read_config_file(path)});
+  }
+  const std::string own_origin = (from_file ? "scenario file " : "scenario ") + scenario + ": profiles." + profile;
+  ConfigLayer own{own_origin, descriptor->profiles.at(profile)};
+  nlohmann::json config = nlohmann::json::object();
+  for (const ConfigLayer& layer : layers) config.update(layer.values);
+  apply_overrides(config, own.values, scenario, own.origin);
+  for (const ConfigKey& key : config_keys())
+    if (!key.optional() && key.applies_to(scenario) && !config.contains(key.name) &&
+        (from_file || key.part != ConfigPart::kScenario))
+      throw std::invalid_argument(own.origin + ": must give '" + key.name + "' (the profile's scenarios differ in it)");
+  layers.push_back(std::move(own));
+  return layers;
+}
+}  // namespace
+
+std::vector<ConfigLayer> default_config_layers(const std::string& scenario, const std::string& profile) {
+  if (is_driving_scenario(scenario)) return driving_scenario_layers(scenario, profile);
+  const std::string path = own_config_path(scenario, profile);
+  return {{"config file " + path, read_config_file(path)}};
 }
 
 nlohmann::json default_config_json(const std::string& scenario, const std::string& profile) {
@@ -164,15 +180,22 @@ void parse_set_option(const std::string& assignment, nlohmann::json& overrides) 
   overrides[key] = value;
 }
 
-nlohmann::json resolve_config(const std::string& scenario, const std::string& profile,
-                              const nlohmann::json& grid_overrides, const nlohmann::json& set_overrides) {
+ParsedConfig resolve_run_config(const std::string& scenario, const std::string& profile,
+                                  const std::vector<ConfigLayer>& overrides) {
   check_profile(profile, scenario);
   std::vector<ConfigLayer> layers = default_config_layers(scenario, profile);
-  if (grid_overrides.is_object()) layers.push_back({"grid", grid_overrides});
-  if (set_overrides.is_object()) layers.push_back({"--set", set_overrides});
+  layers.insert(layers.end(), overrides.begin(), overrides.end());
   nlohmann::json config = merge_layers(layers, scenario);  // the merge `rapid run` makes
-  run_config_from_json(config, scenario);                  // validates the whole
-  return config;
+  RunConfig run = run_config_from_json(config, scenario);  // validates the whole
+  return {std::move(config), std::move(run)};
+}
+
+nlohmann::json resolve_config(const std::string& scenario, const std::string& profile,
+                              const nlohmann::json& grid_overrides, const nlohmann::json& set_overrides) {
+  std::vector<ConfigLayer> overrides;
+  if (grid_overrides.is_object()) overrides.push_back({"grid", grid_overrides});
+  if (set_overrides.is_object()) overrides.push_back({"--set", set_overrides});
+  return resolve_run_config(scenario, profile, overrides).json;
 }
 
 namespace {

@@ -1,5 +1,6 @@
-// Resolving a run's config (RunConfig, config_keys.hpp): the scenario's file in the chosen profile
-// (experiments/configs/<profile>/<scenario>.json), then a grid's overrides, then `rapid run --set
+// Resolving a run's config (RunConfig, config_keys.hpp): the chosen profile's keys that its
+// scenarios share (experiments/configs/<profile>/shared.json), the scenario's own keys for that
+// profile (its descriptor's "profiles" entry), then a grid's overrides, then `rapid run --set
 // key=value`, each checked key by key against the key table. The resolved config is recorded in
 // the run record and hashed.
 #pragma once
@@ -23,7 +24,8 @@ std::string config_dir();
 const std::vector<std::string>& config_profiles();
 inline constexpr const char* kDefaultProfile = "short";
 
-// Throws std::invalid_argument naming `profile` unless it is a profile with a file for `scenario`.
+// Throws std::invalid_argument naming `scenario` if it is no scenario (check_scenario_name), or
+// naming `profile` unless it is a profile with a file for `scenario`.
 void check_profile(const std::string& profile, const std::string& scenario);
 
 // One layer of a config: where its values come from (what an error or `rapid run --print-config`
@@ -33,17 +35,19 @@ struct ConfigLayer {
   nlohmann::json values;  // an object
 };
 
-// The layers of `scenario`'s config in `profile`, lowest first: a built-in scenario's file
-// (experiments/configs/<profile>/<scenario>.json: throws std::runtime_error if it is missing or
-// not a JSON object; its keys are checked when it is parsed); for a scenario file (.json), the
-// profile's shared keys, the descriptor's settings, then the descriptor's "profiles" entry.
+// The layers of `scenario`'s config in `profile`, lowest first. A driving scenario, built-in or a
+// file: the profile's shared keys (experiments/configs/<profile>/shared.json; a scenario file takes
+// only its agent and schedule keys and writes its descriptor's settings above them), then the
+// descriptor's "profiles" entry, checked here. The pendulum: its own file,
+// experiments/configs/<profile>/pendulum.json. A config file missing or not a JSON object throws
+// std::runtime_error.
 std::vector<ConfigLayer> default_config_layers(const std::string& scenario, const std::string& profile);
 
 // Those layers merged: the config of `scenario` in `profile` before any override.
 nlohmann::json default_config_json(const std::string& scenario, const std::string& profile = kDefaultProfile);
 
-// The agent and schedule keys on which every built-in driving scenario's config of `profile`
-// agrees: what a scenario file's run takes from the profile (its own keys may override them).
+// The agent and schedule keys of the profile's shared file: what a scenario file's run takes from
+// the profile (its own keys may override them).
 nlohmann::json shared_profile_config(const std::string& profile);
 
 // Applies `overrides` (an object) onto `config`, a config of `scenario`: each key must be a config
@@ -59,6 +63,19 @@ nlohmann::json merge_layers(const std::vector<ConfigLayer>& layers, const std::s
 // Parses "key=value" (value as JSON, else as a plain string) into `overrides`. Throws
 // std::invalid_argument for a malformed assignment or a key `overrides` already holds.
 void parse_set_option(const std::string& assignment, nlohmann::json& overrides);
+
+// A config resolved and parsed: `json` as a record holds it and its hash covers it, `run` its typed
+// value. (A job's config, with its algorithm's recipe and each key's origin: job.hpp's ResolvedConfig.)
+struct ParsedConfig {
+  nlohmann::json json;
+  RunConfig run;
+};
+
+// The config of `scenario` in `profile` with `overrides` (layers of config keys, lowest first) on
+// top, merged as `rapid run` merges and parsed once. Throws std::invalid_argument naming the
+// offending key (in the words of its layer's origin), the unknown scenario or the missing profile.
+ParsedConfig resolve_run_config(const std::string& scenario, const std::string& profile,
+                                  const std::vector<ConfigLayer>& overrides);
 
 // The config of a cell: the scenario's file in `profile`, then the grid's overrides (if
 // `grid_overrides` is an object), then `--set` overrides, validated as a whole. Throws

@@ -101,7 +101,7 @@ class WrongInputs(unittest.TestCase):
             rh.Env("nope")
         message = str(e.exception)
         self.assertNotIn("\n", message)
-        self.assertTrue(message.startswith("unknown scenario 'nope'; expected one of lane-drop"), message)
+        self.assertTrue(message.startswith("unknown scenario 'nope'; expected one of cut-in, lane-drop, merge"), message)
 
     def test_a_wrong_config_key_or_value_is_named(self):
         with self.assertRaisesRegex(ValueError, "'nope'"):
@@ -112,8 +112,20 @@ class WrongInputs(unittest.TestCase):
             rh.Env("pendulum", config=[1])
 
     def test_the_lists_match_the_harness(self):
-        self.assertEqual(rh.scenarios()[:3], ["lane-drop", "cut-in", "merge"])
+        self.assertEqual(rh.scenarios(), ["cut-in", "lane-drop", "merge", "pendulum"])
         self.assertIn("flow", rh.profiles())
+
+    def test_the_config_is_the_one_a_run_resolves(self):
+        flow = rh.config("merge", "flow")
+        # The flow profile's shared keys under merge's own (its descriptor's "profiles" entry).
+        self.assertEqual((flow["epsilon"], flow["steps"], flow["network"]), (-0.15, 30000, "long"))
+        self.assertIsInstance(flow["inflow"], float)
+        self.assertEqual(rh.config("merge", "flow", {"steps": 5})["steps"], 5)
+        self.assertNotIn("inflow", rh.config("merge"), "a short built-in leaves its scenario keys to their defaults")
+        with self.assertRaisesRegex(ValueError, "^scenario 'pendulum' has no 'flow' profile$"):
+            rh.config("pendulum", "flow")
+        with self.assertRaisesRegex(ValueError, "^unknown scenario 'nope'"):
+            rh.config("nope")
 
 
 class DrivingEnv(unittest.TestCase):

@@ -9,6 +9,7 @@
 
 #include "core/mlp.hpp"
 #include "core/rng.hpp"
+#include "experiments/run/run_config.hpp"
 #include "experiments/report/summarize.hpp"
 #include "experiments/report/summary.hpp"
 #include "experiments/report/animations.hpp"
@@ -61,7 +62,7 @@ class SummaryAnimations : public ::testing::Test {
     actor.save((run_dir(dataset, algo) / "actor.ckpt").string(), 1);
     const auto path = run_dir(dataset, algo) / "record.json";
     nlohmann::json record = report_test::read_json(path);
-    record["config"] = report_test::read_json(std::string(RAPID_SOURCE_DIR) + "/experiments/configs/short/merge.json");
+    record["config"] = default_config_json("merge", "short");
     report_test::write_text(path, record.dump(1));
   }
 };

@@ -70,8 +70,10 @@ TEST(WatchCli, EvalTrafficIsTheTrainersEvaluationEpisode) {
 
 // A run record whose config carries the flow profile's scenario keys (shortened horizon).
 std::string write_flow_record(const Scratch& s, const std::string& scenario, int horizon) {
-  nlohmann::json config =
-      nlohmann::json::parse(test::slurp(std::string(RAPID_SOURCE_DIR) + "/experiments/configs/flow/merge.json"));
+  // The flow profile's keys shared by its scenarios, then merge's own (as the harness layers them).
+  const std::string source = RAPID_SOURCE_DIR;
+  nlohmann::json config = nlohmann::json::parse(test::slurp(source + "/experiments/configs/flow/shared.json"));
+  config.update(nlohmann::json::parse(test::slurp(source + "/envs/networks/merge/scenario.json"))["profiles"]["flow"]);
   config["horizon"] = horizon;
   const nlohmann::json record = {{"schema", "rapid.run/1"},
                                  {"cell", {{"scenario", scenario}, {"algo", "ddpg"}, {"dataset", nullptr}, {"seed", 0}}},
