@@ -181,6 +181,7 @@ StepResult DrivingEnv::step(const ConstVecRef& action, VecRef obs) {
     r.info.ego_speed = ego_.speed;
     r.info.lane_change_failed = failed;
     const driving::RewardTerms terms = reward(collision, r.info.lane_changes > 0, failed);
+    r.info.reward_terms = terms;
     r.reward = static_cast<float>(terms.total);
     r.terminated = collision;
     const Road::Edge& now = road_.edge(ego_.edge);

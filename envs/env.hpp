@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/tensor.hpp"
+#include "envs/driving_reward.hpp"
 #include "envs/scenario_settings.hpp"
 
 namespace rapid {
@@ -20,6 +21,9 @@ struct StepInfo {
   double ego_speed = 0.0;       // m/s (pendulum: angular velocity)
   int lane_changes = 0;         // lane changes completed during this decision
   bool lane_change_failed = false;  // a commanded lane change that could not happen
+  // A driving scenario's reward term by term (reward_terms.total is the reward); all zero for the
+  // pendulum. What a trace records per decision, and what the Python module's step info gives.
+  driving::RewardTerms reward_terms;
 };
 
 struct StepResult {

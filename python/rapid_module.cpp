@@ -9,14 +9,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
 
+#include "algos/registry.hpp"
+#include "core/clock.hpp"
+#include "core/contains.hpp"
 #include "core/dataset_io.hpp"
+#include "core/printable.hpp"
 #include "core/rng.hpp"
 #include "envs/env.hpp"
+#include "experiments/run/external_record.hpp"
 #include "experiments/run/run_config.hpp"
 #include "experiments/run/trainer.hpp"
 
@@ -56,7 +62,8 @@ class PyEnv {
  public:
   PyEnv(const std::string& scenario, const std::string& profile, const py::object& config)
       : config_(python_run_config(scenario, profile, config)),
-        env_(make_run_env(scenario, config_)) {
+        env_(make_run_env(scenario, config_)),
+        driving_(is_driving_scenario(scenario)) {
     observation_space = box(env_->obs_dim(), -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity());
     action_space = box(env_->act_dim(), -1.0f, 1.0f);
   }
@@ -95,10 +102,39 @@ class PyEnv {
     info["ego_speed"] = r.info.ego_speed;
     info["lane_changes"] = r.info.lane_changes;
     info["lane_change_failed"] = r.info.lane_change_failed;
+    if (driving_) {
+      const driving::RewardTerms& t = r.info.reward_terms;
+      py::dict terms;
+      terms["velocity"] = t.velocity;
+      terms["gap"] = t.gap;
+      terms["follower"] = t.follower;
+      terms["failed_lane_change"] = t.failed_lane_change;
+      terms["collision"] = t.collision;
+      info["reward_terms"] = terms;
+    }
     return py::make_tuple(obs, static_cast<double>(r.reward), r.terminated, r.truncated, info);
   }
 
   void close() { env_.reset(); }
+
+  // The benchmark's baseline (scripts/bench-python-step): `decisions` steps of this environment
+  // taken in C++ with `action`, from reset(seed), resetting where an episode ends, as the trainer
+  // steps it; returns the seconds they took. What a Python loop of env.step is measured against.
+  double cpp_steps(long decisions, const py::array_t<float, py::array::c_style | py::array::forcecast>& action,
+                   std::uint64_t seed) {
+    Env& env = live();
+    Vec obs(env.obs_dim());
+    const Eigen::Map<const Vec> a(action.data(), env.act_dim());
+    std::uint64_t episode = 0;
+    env.reset(stream_seed(seed, Stream::kEnvTrain, episode++), obs);
+    const auto t0 = Clock::now();
+    for (long i = 0; i < decisions; ++i) {
+      const StepResult r = env.step(a, obs);
+      if (r.terminated || r.truncated) env.reset(stream_seed(seed, Stream::kEnvTrain, episode++), obs);
+    }
+    needs_reset_ = true;
+    return seconds_since(t0);
+  }
   int horizon() { return live().horizon(); }
   std::string name() { return live().name(); }
 
@@ -118,6 +154,7 @@ class PyEnv {
 
   RunConfig config_;
   std::unique_ptr<Env> env_;
+  bool driving_;  // a road, whose reward has terms
   std::uint64_t run_seed_ = 0;
   std::uint64_t episode_ = 0;
   bool needs_reset_ = true;
@@ -223,6 +260,102 @@ py::dict py_evaluate(const py::function& policy, const std::string& scenario, co
   return out;
 }
 
+// A Python method's run record (experiments/run/external_record.hpp): the same record.json a
+// `rapid run` writes, from what the method reports.
+class PyRunRecord {
+ public:
+  PyRunRecord(const std::string& out, const std::string& scenario, const std::string& algo, long long seed,
+              const std::string& profile, const py::object& config, const py::object& dataset,
+              const py::object& dataset_name, const py::object& script, const py::object& method_config)
+      : record_(make(job(out, scenario, algo, seed, profile, config, dataset, dataset_name), script, method_config)) {}
+
+  // `result`: what evaluate() returns (its `returns`, `return_std`, `collision_rate`), at `step`
+  // decisions of training.
+  void add_eval(long step, const py::dict& result) {
+    const EvalResult r = eval_result(result, "add_eval");
+    record_.log().eval.push_back({step, step, r.return_mean, r.return_std, r.collision_rate});
+  }
+
+  void add_train_episode(long step, double ret, int length, bool collision) {
+    if (length < 1) throw std::invalid_argument("add_train_episode: length must be at least 1");
+    record_.log().episodes.push_back({step, ret, length, collision});
+    record_.log().env_steps = std::max(record_.log().env_steps, step + length);
+  }
+
+  void add_losses(long step, double critic, double actor, double q_mean, double bc_prior, double bc_online) {
+    LossPoint p;
+    p.step = step;
+    p.critic_loss = critic, p.actor_loss = actor, p.q_mean = q_mean, p.bc_prior = bc_prior, p.bc_online = bc_online;
+    record_.log().losses.push_back(p);
+  }
+
+  std::string finish(const py::object& final, long updates, const std::string& status, const py::object& error) {
+    if (!final.is_none()) record_.log().final_eval = eval_result(final.cast<py::dict>(), "finish");
+    record_.log().updates = updates;
+    return record_.write(status, error.is_none() ? "" : error.cast<std::string>());
+  }
+
+ private:
+  static JobSpec job(const std::string& out, const std::string& scenario, const std::string& algo, long long seed,
+                     const std::string& profile, const py::object& config, const py::object& dataset,
+                     const py::object& dataset_name) {
+    if (!is_safe_name(algo)) throw std::invalid_argument("algo: '" + printable(algo) + "' is not a name of letters, digits, '.', '_' and '-'");
+    if (contains(algo_names(), algo))
+      throw std::invalid_argument("algo: '" + algo + "' is the harness's own; give the method a name of its own (e.g. " + algo + "-torch)");
+    if (seed < 0) throw std::invalid_argument("seed must be a non-negative integer, got " + std::to_string(seed));
+    JobSpec spec;
+    spec.scenario = scenario;
+    spec.algo = algo;
+    spec.seed = static_cast<std::uint64_t>(seed);
+    spec.config = python_config(scenario, profile, config).json;
+    spec.out_dir = out;
+    if (!dataset.is_none()) {
+      spec.dataset_path = dataset.cast<std::string>();
+      read_dataset(spec.dataset_path);  // a file that is no dataset is refused here, naming it
+      spec.dataset = dataset_name.is_none() ? std::filesystem::path(spec.dataset_path).stem().string()
+                                            : dataset_name.cast<std::string>();
+    }
+    return spec;
+  }
+
+  // The cell is checked before the script (a wrong name is named even when the script is fine too).
+  static ExternalRecord make(JobSpec spec, const py::object& script, const py::object& method_config) {
+    return ExternalRecord(std::move(spec), method(script, method_config));
+  }
+
+  static ExternalMethod method(const py::object& script, const py::object& method_config) {
+    std::string path;
+    if (!script.is_none()) {
+      path = script.cast<std::string>();
+    } else {
+      const py::list argv = py::module_::import("sys").attr("argv");
+      if (argv.empty()) throw std::invalid_argument("script: no sys.argv[0] to take as the script; give script=PATH");
+      path = argv[0].cast<std::string>();
+    }
+    nlohmann::json config = nlohmann::json::object();
+    if (!method_config.is_none())
+      config = nlohmann::json::parse(py::module_::import("json").attr("dumps")(method_config).cast<std::string>());
+    return describe_external_method(path, std::move(config));
+  }
+
+  static EvalResult eval_result(const py::dict& result, const char* where) {
+    if (!result.contains("returns"))
+      throw std::invalid_argument(std::string(where) + ": expected evaluate()'s result, a dict with 'returns'");
+    EvalResult r;
+    r.returns = result["returns"].cast<std::vector<double>>();
+    if (r.returns.empty()) throw std::invalid_argument(std::string(where) + ": no episode returns");
+    double sum = 0, squares = 0;
+    for (double x : r.returns) sum += x;
+    r.return_mean = sum / static_cast<double>(r.returns.size());
+    for (double x : r.returns) squares += (x - r.return_mean) * (x - r.return_mean);
+    r.return_std = std::sqrt(squares / static_cast<double>(r.returns.size()));
+    r.collision_rate = result.contains("collision_rate") ? result["collision_rate"].cast<double>() : 0.0;
+    return r;
+  }
+
+  ExternalRecord record_;
+};
+
 }  // namespace
 }  // namespace rapid
 
@@ -279,6 +412,8 @@ class Box:
       .def("reset", &PyEnv::reset, py::kw_only(), py::arg("seed") = py::none(), py::arg("options") = py::none())
       .def("step", &PyEnv::step, py::arg("action"))
       .def("close", &PyEnv::close)
+      .def("_cpp_steps", &PyEnv::cpp_steps, py::arg("decisions"), py::arg("action"), py::arg("seed") = 0,
+           "Benchmark baseline: seconds for `decisions` steps taken in C++ (scripts/bench-python-step).")
       .def_property_readonly("horizon", &PyEnv::horizon)
       .def_property_readonly("name", &PyEnv::name)
       .def_readonly("observation_space", &PyEnv::observation_space)
@@ -288,6 +423,22 @@ class Box:
   m.def("load_dataset", &load_dataset, py::arg("path"), "A D4RL-layout HDF5 file as numpy arrays and its metadata.");
   m.def("save_dataset", &save_dataset, py::arg("path"), py::arg("arrays"), py::arg("metadata") = py::dict(),
         "Writes numpy arrays (observations, actions, rewards, next_observations, terminals, timeouts) as a D4RL-layout file.");
+  py::class_<PyRunRecord>(m, "RunRecord", "A Python method's run record, written as a `rapid run` writes record.json.")
+      .def(py::init<const std::string&, const std::string&, const std::string&, long long, const std::string&,
+                    const py::object&, const py::object&, const py::object&, const py::object&, const py::object&>(),
+           py::arg("out"), py::arg("scenario"), py::arg("algo"), py::arg("seed"), py::kw_only(),
+           py::arg("profile") = std::string(kDefaultProfile), py::arg("config") = py::none(), py::arg("dataset") = py::none(),
+           py::arg("dataset_name") = py::none(), py::arg("script") = py::none(), py::arg("method_config") = py::none())
+      .def("add_eval", &PyRunRecord::add_eval, py::arg("step"), py::arg("result"))
+      .def("add_train_episode", &PyRunRecord::add_train_episode, py::arg("step"), py::arg("ret"), py::arg("length"),
+           py::arg("collision") = false)
+      .def("add_losses", &PyRunRecord::add_losses, py::arg("step"), py::kw_only(),
+           py::arg("critic") = std::numeric_limits<double>::quiet_NaN(), py::arg("actor") = std::numeric_limits<double>::quiet_NaN(),
+           py::arg("q_mean") = std::numeric_limits<double>::quiet_NaN(), py::arg("bc_prior") = std::numeric_limits<double>::quiet_NaN(),
+           py::arg("bc_online") = std::numeric_limits<double>::quiet_NaN())
+      .def("finish", &PyRunRecord::finish, py::kw_only(), py::arg("final") = py::none(), py::arg("updates") = 0,
+           py::arg("status") = std::string("ok"), py::arg("error") = py::none(),
+           "Writes OUT/record.json; returns its path.");
   m.def("evaluate", &py_evaluate, py::arg("policy"), py::arg("scenario"), py::arg("profile") = std::string(kDefaultProfile),
         py::arg("config") = py::none(), py::arg("episodes") = py::none(),
         "Scores a policy (obs -> action) by the evaluation protocol of a run: the same traffic seeds and episodes.");

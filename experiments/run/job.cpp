@@ -10,6 +10,7 @@
 
 #include "algos/registry.hpp"
 #include "core/atomic_file.hpp"
+#include "core/contains.hpp"
 #include "core/hash.hpp"
 #include "envs/env.hpp"
 #include "envs/scenario_descriptor.hpp"
@@ -97,7 +98,9 @@ std::string dataset_content_hash(const std::string& path) {
 }
 }  // namespace
 
-std::string job_config_hash(const JobSpec& spec) {
+std::string job_config_hash(const JobSpec& spec) { return fnv1a_hex(job_hash_key(spec).dump()); }
+
+nlohmann::json job_hash_key(const JobSpec& spec) {
   nlohmann::json key = {{"scenario", spec.scenario}, {"algo", spec.algo}, {"seed", spec.seed},
                         {"config", spec.config}, {"dataset", nullptr}};
   if (!spec.dataset_path.empty()) key["dataset"] = dataset_content_hash(spec.dataset_path);
@@ -105,11 +108,13 @@ std::string job_config_hash(const JobSpec& spec) {
   // What the algorithm's recipe fills is part of what the job runs: a binary whose recipe changed
   // (rlpd-sac's temperature rate, td3-bc's critics) reruns those jobs instead of resuming them.
   // The paper's five have no recipe, so their hashes are what they were.
-  if (nlohmann::json fills = recipe_fills(spec.config, spec.algo); !fills.empty()) key["recipe"] = std::move(fills);
+  // (A method outside the registry has no recipe.)
+  if (contains(algo_names(), spec.algo))
+    if (nlohmann::json fills = recipe_fills(spec.config, spec.algo); !fills.empty()) key["recipe"] = std::move(fills);
   // A scenario file's runs also depend on its files (the built-ins' are part of the harness).
   if (is_driving_scenario(spec.scenario) && !is_builtin_scenario(spec.scenario))
     key["scenario_files"] = scenario_files_hash(*scenario_descriptor(spec.scenario));
-  return fnv1a_hex(key.dump());
+  return key;
 }
 
 std::string checkpoint_file(const std::string& dir, long step) {

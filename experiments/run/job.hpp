@@ -80,6 +80,10 @@ std::string config_origins_text(const ResolvedConfig& resolved);
 // The hash that says whether a finished record still answers this job: the cell, the resolved
 // config and the dataset file's content. Code revision is deliberately not part of it.
 std::string job_config_hash(const JobSpec& spec);
+// What job_config_hash hashes, as a JSON object: the cell, the resolved config, the dataset's
+// content hash, a registry algorithm's recipe fills, a scenario file's files. A method outside the
+// registry adds what else its runs depend on (external_record.hpp).
+nlohmann::json job_hash_key(const JobSpec& spec);
 
 // dir/progress.json: how far a running job is (`rapid status` and the live sweep display read it).
 void write_progress(const std::string& dir, long step, long steps, double steps_per_s);

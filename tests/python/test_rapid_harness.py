@@ -2,6 +2,7 @@
 errors, and the evaluation protocol. Run by CTest with Debian's /usr/bin/python3 and
 PYTHONPATH=<build folder>."""
 
+import json
 import os
 import tempfile
 import unittest
@@ -89,6 +90,11 @@ class PendulumEnv(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "no options"):
             self.env.reset(options={"x": 1})
 
+    def test_the_benchmarks_cpp_loop_steps_the_same_environment(self):
+        self.assertGreater(self.env._cpp_steps(250, np.zeros(1, np.float32)), 0.0)  # past the horizon: it resets
+        with self.assertRaisesRegex(RuntimeError, "reset"):
+            self.env.step(np.zeros(1, np.float32))  # its episode is not the caller's
+
     def test_a_closed_environment_says_so(self):
         self.env.close()
         with self.assertRaisesRegex(RuntimeError, "closed"):
@@ -141,6 +147,10 @@ class DrivingEnv(unittest.TestCase):
                     self.assertTrue(np.all(np.isfinite(obs)))
                     self.assertIsInstance(info["collision"], bool)
                     self.assertGreaterEqual(info["ego_speed"], 0.0)
+                    # The reward's terms add up to it (velocity less the penalties; the reward is float32).
+                    t = info["reward_terms"]
+                    total = -t["collision"] if info["collision"] else t["velocity"] - t["gap"] - t["follower"] - t["failed_lane_change"]
+                    self.assertAlmostEqual(total, reward, places=5)
                     trail += [obs, reward]
                     if terminated or truncated:
                         break
@@ -163,6 +173,7 @@ class DrivingEnv(unittest.TestCase):
             self.assertTrue(terminated)
             self.assertFalse(truncated)
             self.assertTrue(info["collision"])
+            self.assertAlmostEqual(-info["reward_terms"]["collision"], reward, places=5)
             self.assertLess(t, env.horizon)
             self.assertLess(reward, 0.0)
         finally:
@@ -251,6 +262,73 @@ class Evaluate(unittest.TestCase):
             rh.evaluate(lambda obs: np.zeros(2), "pendulum", episodes=1)
         with self.assertRaisesRegex(ValueError, "at least 1"):
             rh.evaluate(lambda obs: np.zeros(1), "pendulum", episodes=0)
+
+
+class RunRecords(unittest.TestCase):
+    """A Python method's record is a `rapid run` record: the same schema, cell, resolved config and
+    final return, with a hash that covers the script and the method's own keys."""
+
+    def write(self, d, method_config=None, script=__file__):
+        zero = lambda obs: np.zeros(1, dtype=np.float32)
+        rec = rh.RunRecord(os.path.join(d, "run"), "pendulum", "zero-torch", 3, config={"steps": 200},
+                           script=script, method_config=method_config or {"lr": 3e-4})
+        rec.add_eval(0, rh.evaluate(zero, "pendulum", episodes=2))
+        rec.add_train_episode(0, -1200.5, 200, False)
+        rec.add_losses(100, critic=0.5, actor=-1.0)
+        final = rh.evaluate(zero, "pendulum", episodes=3)
+        path = rec.finish(final=final, updates=150)
+        with open(path) as f:
+            return json.load(f), final
+
+    def test_the_record_has_the_harness_schema(self):
+        with tempfile.TemporaryDirectory() as d:
+            record, final = self.write(d)
+        self.assertEqual(record["schema"], "rapid.run/1")
+        self.assertEqual((record["status"], record["error"]), ("ok", None))
+        self.assertEqual(record["cell"], {"scenario": "pendulum", "dataset": None, "algo": "zero-torch", "seed": 3})
+        self.assertEqual(record["config"], rh.config("pendulum", config={"steps": 200}))
+        self.assertEqual(record["final"]["episode_returns"], final["returns"])
+        self.assertAlmostEqual(record["final"]["return_mean"], final["return_mean"], places=9)
+        self.assertEqual(record["updates"], 150)
+        self.assertEqual([e["step"] for e in record["eval"]], [0])
+        self.assertEqual(record["train_episodes"][0]["return"], -1200.5)
+        self.assertEqual((record["losses"][0]["critic"], record["losses"][0]["q_mean"]), (0.5, None))  # not given: null
+        self.assertEqual(record["method_config"], {"lr": 3e-4})
+        self.assertEqual(record["provenance"]["script"]["path"], __file__)
+        self.assertRegex(record["config_hash"], "^[0-9a-f]{16}$")
+
+    def test_the_hash_covers_the_method_and_its_script(self):
+        with tempfile.TemporaryDirectory() as d:
+            base = self.write(d)[0]["config_hash"]
+            self.assertEqual(self.write(d)[0]["config_hash"], base)
+            self.assertNotEqual(self.write(d, method_config={"lr": 1e-3})[0]["config_hash"], base)
+            other = os.path.join(d, "other.py")
+            with open(other, "w") as f:
+                f.write("# another script\n")
+            self.assertNotEqual(self.write(d, script=other)[0]["config_hash"], base)
+
+    def test_wrong_records_are_refused_by_name(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, "run")
+            with self.assertRaisesRegex(ValueError, "harness's own"):
+                rh.RunRecord(out, "pendulum", "rapid-rl", 0)
+            with self.assertRaisesRegex(ValueError, "not a name"):
+                rh.RunRecord(out, "pendulum", "my method", 0)
+            with self.assertRaisesRegex(ValueError, "^unknown scenario"):
+                rh.RunRecord(out, "nope", "mine", 0)
+            with self.assertRaisesRegex(ValueError, "script"):
+                rh.RunRecord(out, "pendulum", "mine", 0, script=os.path.join(d, "missing.py"))
+            rec = rh.RunRecord(out, "pendulum", "mine", 0, script=__file__)
+            with self.assertRaisesRegex(ValueError, "final evaluation"):
+                rec.finish()
+            with self.assertRaisesRegex(ValueError, "status"):
+                rec.finish(status="great")
+            with self.assertRaisesRegex(ValueError, "says why"):
+                rec.finish(status="failed")
+            self.assertFalse(os.path.exists(out), "a refused record writes nothing")
+            rec.finish(status="failed", error="diverged at step 7")
+            with open(os.path.join(out, "record.json")) as f:
+                self.assertEqual(json.load(f)["error"], "diverged at step 7")
 
 
 if __name__ == "__main__":

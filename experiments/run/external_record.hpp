@@ -1,0 +1,59 @@
+// The run record of a method that lives outside the harness (a Python script, docs/python.md):
+// what it measured, written in the schema a `rapid run` writes (record.hpp), so that `rapid
+// status`, `summarize`, `--decide` and the reports read it like any other run. The harness's own
+// trainer is not involved: the method reports its evaluations, training episodes and losses, and
+// this writes them down with the cell, the resolved config, the provenance and a config hash that
+// also covers the method's own hyperparameters and the script's bytes.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/clock.hpp"
+#include "experiments/run/job.hpp"
+#include "experiments/run/trainer.hpp"
+
+namespace rapid {
+
+// What an external run depends on beyond its cell and config: the script that trained it (its
+// path as given and a hash of its bytes) and the method's own hyperparameters, a JSON object.
+struct ExternalMethod {
+  std::string script_path;
+  std::string script_hash;  // fnv1a of the file's bytes
+  nlohmann::json config = nlohmann::json::object();
+};
+
+// Reads the script and hashes it. Throws std::invalid_argument naming the file if it cannot be
+// read, or the config if it is not a JSON object.
+ExternalMethod describe_external_method(const std::string& script_path, nlohmann::json config);
+
+// The config hash of an external run: job_config_hash's cell, resolved config, dataset content and
+// scenario files, plus the method (script bytes, its own config). Editing the script or one of its
+// hyperparameters makes an earlier record stale, as a config change does.
+std::string external_config_hash(const JobSpec& spec, const ExternalMethod& method);
+
+// An external run's record being written: the log grows as the method reports, write() puts it in
+// spec.out_dir/record.json (atomically) with its status.
+class ExternalRecord {
+ public:
+  // spec.config is the resolved config (resolve_run_config), spec.algo the method's name. Starts
+  // the clock and the record (start_record).
+  ExternalRecord(JobSpec spec, ExternalMethod method);
+
+  TrainLog& log() { return log_; }
+  const JobSpec& spec() const { return spec_; }
+
+  // Writes the record: `status` ok, failed or diverged, `error` empty unless not ok. The final
+  // return is the log's final evaluation where it has one, else the mean of the last `last_k`
+  // evaluations (the config's). Returns the record's path.
+  std::string write(const std::string& status, const std::string& error);
+
+ private:
+  JobSpec spec_;
+  ExternalMethod method_;
+  TrainLog log_;
+  nlohmann::json record_;
+  Clock::time_point started_;
+};
+
+}  // namespace rapid
