@@ -1,6 +1,8 @@
 #include "algos/registry.hpp"
 
 #include <algorithm>
+#include <deque>
+#include <iterator>
 #include <stdexcept>
 
 #include "algos/col_all.hpp"
@@ -93,10 +95,61 @@ std::vector<std::string> algo_names() {
   return names;
 }
 
-const Algorithm& find_algorithm(const std::string& name) {
+namespace {
+// A deque: registering one more row leaves the references to the others valid.
+std::deque<Algorithm>& external_rows() {
+  static std::deque<Algorithm> rows;
+  return rows;
+}
+// Colours none of the table's rows has, given out in registration order.
+const char* const kExternalColours[] = {"tab:pink", "black", "gold", "navy", "teal", "magenta", "lime", "maroon"};
+}  // namespace
+
+const Algorithm& register_external_algorithm(const std::string& name, bool uses_prior) {
   for (const Algorithm& a : algorithms())
-    if (a.name == name) return a;
-  throw std::invalid_argument("unknown algorithm '" + printable(name) + "'; expected one of " + comma_joined(algo_names()));
+    if (a.name == name) throw std::invalid_argument("'" + name + "' is the harness's own algorithm; give the method a name of its own");
+  std::deque<Algorithm>& rows = external_rows();
+  auto it = std::find_if(rows.begin(), rows.end(), [&](const Algorithm& a) { return a.name == name; });
+  if (it == rows.end()) {
+    rows.emplace_back();
+    it = std::prev(rows.end());
+    it->colour = kExternalColours[(rows.size() - 1) % std::size(kExternalColours)];
+  }
+  it->name = name;
+  it->display_name = name;
+  it->uses_prior = uses_prior;
+  it->in_paper = false;
+  return *it;
+}
+
+const Algorithm* lookup_algorithm(const std::string& name) {
+  for (const Algorithm& a : algorithms())
+    if (a.name == name) return &a;
+  for (const Algorithm& a : external_rows())
+    if (a.name == name) return &a;
+  return nullptr;
+}
+
+const Algorithm& find_algorithm(const std::string& name) {
+  if (const Algorithm* a = lookup_algorithm(name)) return *a;
+  std::vector<std::string> names = algo_names();
+  for (const Algorithm& a : external_rows()) names.push_back(a.name);
+  throw std::invalid_argument("unknown algorithm '" + printable(name) + "'; expected one of " + comma_joined(names));
+}
+
+std::vector<std::string> names_in_table_order(const std::vector<std::string>& names) {
+  std::vector<std::string> out;
+  for (const Algorithm* a : rows_in_table_order(names)) out.push_back(a->name);
+  return out;
+}
+
+std::vector<const Algorithm*> rows_in_table_order(const std::vector<std::string>& names) {
+  std::vector<const Algorithm*> rows;
+  for (const Algorithm& a : algorithms())
+    if (std::find(names.begin(), names.end(), a.name) != names.end()) rows.push_back(&a);
+  for (const std::string& name : names)
+    if (const Algorithm* a = lookup_algorithm(name); a != nullptr && a->make == nullptr) rows.push_back(a);
+  return rows;
 }
 
 }  // namespace rapid

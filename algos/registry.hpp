@@ -63,6 +63,19 @@ struct Algorithm {
 const std::vector<Algorithm>& algorithms();
 std::vector<std::string> algo_names();
 
+// A method outside the harness (a command a grid names, experiments/run/external_method.hpp) as
+// a row: its name, whether it uses prior data, no agent (`make` is null) and no method keys, so it
+// reads every shared key. Registered when a grid that names it is loaded; registering a name again
+// replaces the row (rows stay where they are: find_algorithm's references remain valid). Throws
+// std::invalid_argument when the name is one of algorithms()'.
+const Algorithm& register_external_algorithm(const std::string& name, bool uses_prior);
+// The row find_algorithm would return, or null: the table's, then the registered external ones.
+const Algorithm* lookup_algorithm(const std::string& name);
+// The rows of `names`: the table's in its order, then the others (external methods) in the order given.
+std::vector<const Algorithm*> rows_in_table_order(const std::vector<std::string>& names);
+// Their names in that order: a table's columns.
+std::vector<std::string> names_in_table_order(const std::vector<std::string>& names);
+
 // Whether some algorithm lists `key` among its method keys (then the others ignore it).
 bool is_algorithm_key(const std::string& key);
 

@@ -19,9 +19,12 @@
 #include "core/clock.hpp"
 #include "core/contains.hpp"
 #include "core/dataset_io.hpp"
+#include "core/json_input.hpp"
 #include "core/printable.hpp"
 #include "core/rng.hpp"
+#include "core/statistics.hpp"
 #include "envs/env.hpp"
+#include "envs/scenario_descriptor.hpp"
 #include "experiments/run/external_record.hpp"
 #include "experiments/run/run_config.hpp"
 #include "experiments/run/trainer.hpp"
@@ -269,6 +272,52 @@ class PyRunRecord {
               const py::object& dataset_name, const py::object& script, const py::object& method_config)
       : record_(make(job(out, scenario, algo, seed, profile, config, dataset, dataset_name), script, method_config)) {}
 
+  // The record of the job a sweep handed an external method (experiments/run/external_run.hpp):
+  // its cell, resolved config and dataset as the job file gives them, its method as the grid named
+  // it; refused when the hash differs from the one the job asks for (the script changed since).
+  static PyRunRecord from_job(const std::string& path) {
+    const nlohmann::json job = read_job(path);
+    try {
+      return from_job(path, job);
+    } catch (const nlohmann::json::exception& e) {  // a key missing or of the wrong type
+      throw std::invalid_argument("job " + path + ": " + e.what());
+    }
+  }
+
+  static PyRunRecord from_job(const std::string& path, const nlohmann::json& job) {
+    JobSpec spec;
+    spec.scenario = job.at("scenario").get<std::string>();
+    spec.algo = job.at("algo").get<std::string>();
+    spec.seed = job.at("seed").get<std::uint64_t>();
+    spec.config = job.at("config");
+    spec.out_dir = job.at("out").get<std::string>();
+    if (!job.at("dataset_path").is_null()) {
+      spec.dataset_path = job["dataset_path"].get<std::string>();
+      spec.dataset = job.at("dataset").get<std::string>();
+    }
+    ExternalMethod method = describe_external_method(job.at("script").get<std::string>(), job.at("method_config"));
+    method.command = job.at("command").get<std::vector<std::string>>();
+    if (external_config_hash(spec, method) != job.at("config_hash").get<std::string>())
+      throw std::invalid_argument("job " + path + ": the record would not carry the job's config_hash (the script, "
+                                  "the dataset or the harness changed since the job was written)");
+    return PyRunRecord(ExternalRecord(std::move(spec), std::move(method)));
+  }
+
+  // A job file as a JSON object, its scenario file (if any) registered so Env(job["scenario"]) finds it.
+  static nlohmann::json read_job(const std::string& path) {
+    nlohmann::json job;
+    try {
+      job = read_json_input(path);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("job " + path + ": " + e.what());
+    }
+    if (!job.is_object() || job.value("schema", "") != "rapid.job/1")
+      throw std::invalid_argument("job " + path + ": not a job file (schema rapid.job/1) that rapid run writes");
+    if (job.contains("scenario_file") && job["scenario_file"].is_string())
+      register_scenario_file(job.at("scenario").get<std::string>(), job["scenario_file"].get<std::string>());
+    return job;
+  }
+
   // `result`: what evaluate() returns (its `returns`, `return_std`, `collision_rate`), at `step`
   // decisions of training.
   void add_eval(long step, const py::dict& result) {
@@ -296,6 +345,8 @@ class PyRunRecord {
   }
 
  private:
+  explicit PyRunRecord(ExternalRecord record) : record_(std::move(record)) {}
+
   static JobSpec job(const std::string& out, const std::string& scenario, const std::string& algo, long long seed,
                      const std::string& profile, const py::object& config, const py::object& dataset,
                      const py::object& dataset_name) {
@@ -344,11 +395,8 @@ class PyRunRecord {
     EvalResult r;
     r.returns = result["returns"].cast<std::vector<double>>();
     if (r.returns.empty()) throw std::invalid_argument(std::string(where) + ": no episode returns");
-    double sum = 0, squares = 0;
-    for (double x : r.returns) sum += x;
-    r.return_mean = sum / static_cast<double>(r.returns.size());
-    for (double x : r.returns) squares += (x - r.return_mean) * (x - r.return_mean);
-    r.return_std = std::sqrt(squares / static_cast<double>(r.returns.size()));
+    r.return_mean = mean(r.returns);
+    r.return_std = population_std(r.returns);  // as the C++ evaluation reports it
     r.collision_rate = result.contains("collision_rate") ? result["collision_rate"].cast<double>() : 0.0;
     return r;
   }
@@ -429,6 +477,8 @@ class Box:
            py::arg("out"), py::arg("scenario"), py::arg("algo"), py::arg("seed"), py::kw_only(),
            py::arg("profile") = std::string(kDefaultProfile), py::arg("config") = py::none(), py::arg("dataset") = py::none(),
            py::arg("dataset_name") = py::none(), py::arg("script") = py::none(), py::arg("method_config") = py::none())
+      .def_static("from_job", py::overload_cast<const std::string&>(&PyRunRecord::from_job), py::arg("path"),
+                  "The record of the job a sweep gave an external method (its --job file).")
       .def("add_eval", &PyRunRecord::add_eval, py::arg("step"), py::arg("result"))
       .def("add_train_episode", &PyRunRecord::add_train_episode, py::arg("step"), py::arg("ret"), py::arg("length"),
            py::arg("collision") = false)
@@ -439,6 +489,12 @@ class Box:
       .def("finish", &PyRunRecord::finish, py::kw_only(), py::arg("final") = py::none(), py::arg("updates") = 0,
            py::arg("status") = std::string("ok"), py::arg("error") = py::none(),
            "Writes OUT/record.json; returns its path.");
+  m.def(
+      "load_job",
+      [](const std::string& path) {
+        return py::module_::import("json").attr("loads")(PyRunRecord::read_job(path).dump());
+      },
+      py::arg("path"), "The job file a sweep gives an external method's command (--job PATH), as a dict.");
   m.def("evaluate", &py_evaluate, py::arg("policy"), py::arg("scenario"), py::arg("profile") = std::string(kDefaultProfile),
         py::arg("config") = py::none(), py::arg("episodes") = py::none(),
         "Scores a policy (obs -> action) by the evaluation protocol of a run: the same traffic seeds and episodes.");

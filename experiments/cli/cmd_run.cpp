@@ -12,11 +12,13 @@
 #include "experiments/cli/errors.hpp"
 #include "experiments/cli/output_folder.hpp"
 #include "experiments/run/dataset_build.hpp"
+#include "experiments/run/external_run.hpp"
 #include "experiments/run/job.hpp"
 #include "experiments/run/prior_dataset.hpp"
 #include "experiments/run/record.hpp"
 #include "experiments/run/run_config.hpp"
 #include "experiments/run/run_job.hpp"
+#include "experiments/sweep/grid.hpp"
 
 namespace rapid {
 
@@ -61,6 +63,12 @@ std::unique_ptr<FolderLock> lock_run_folder(const std::string& dir) {
   }
 }
 
+// The profile the run's config starts from: the grid's, else --profile's, else the default.
+std::string run_profile(const RunOptions& o) {
+  if (!o.grid.empty()) return load_grid(o.grid).profile;
+  return o.profile.empty() ? kDefaultProfile : o.profile;
+}
+
 int run_command(const RunOptions& o) {
   JobSpec spec;
   load_grid_scenarios(o.grid);
@@ -98,6 +106,7 @@ int run_command(const RunOptions& o) {
                         o.force);
   make_output_folder(o.out, "--out");
   const auto lock = lock_run_folder(o.out);
+  if (const ExternalMethod* method = find_external_method(o.algo)) return run_external_job(spec, *method, run_profile(o));
   return run_job(spec);
 }
 
@@ -107,7 +116,7 @@ Command add_run_command(CLI::App& parent) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* sub = parent.add_subcommand("run", "Train one job and write its run record");
   sub->add_option("--scenario", o->scenario, scenario_option_help())->required();
-  sub->add_option("--algo", o->algo, names_or(algo_names()))->required();
+  sub->add_option("--algo", o->algo, names_or(algo_names()) + ", or an external method of --grid")->required();
   std::vector<std::string> datasets = dataset_names();
   datasets.push_back("a D4RL-layout HDF5 path");
   sub->add_option("--dataset", o->dataset, names_or(datasets));

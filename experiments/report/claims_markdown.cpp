@@ -7,7 +7,6 @@
 #include <sstream>
 
 #include "algos/registry.hpp"
-#include "core/contains.hpp"
 #include "core/printable.hpp"
 #include "experiments/report/adaptive_seeds.hpp"
 #include "experiments/report/claims.hpp"
@@ -38,9 +37,8 @@ std::string markdown_table(const ClaimResult& c) {
 // RAPID-RL with the paper's algorithms only). Empty for a grid of the paper's algorithms.
 std::string non_paper_note(const Summary& s) {
   std::string names;
-  for (const Algorithm& a : algorithms())
-    if (!a.in_paper && contains(s.grid.algos, a.name))
-      names += (names.empty() ? "" : ", ") + a.display_name;
+  for (const Algorithm* a : rows_in_table_order(s.grid.algos))
+    if (!a->in_paper) names += (names.empty() ? "" : ", ") + a->display_name;
   if (names.empty()) return "";
   return "The grid also has " + names +
          ", which the paper does not have: the claims leave it out (in C1 and C5 RAPID-RL is compared with the "

@@ -64,9 +64,8 @@ std::string lookup(const std::map<std::string, std::string>& names, const std::s
 }  // namespace
 
 std::string algo_display_name(const std::string& algo) {
-  for (const Algorithm& a : algorithms())
-    if (a.name == algo) return a.display_name;
-  return algo;
+  const Algorithm* a = lookup_algorithm(algo);
+  return a == nullptr ? algo : a->display_name;
 }
 
 std::string dataset_display_name(const std::string& dataset) {

@@ -25,11 +25,7 @@ std::string header(const std::vector<std::string>& names) {
 
 // The grid's algorithms in the registry's order: Table I's columns.
 std::vector<std::string> table_columns(const nlohmann::json& summary) {
-  const nlohmann::json algos = summary["grid"].value("algos", nlohmann::json::array());
-  std::vector<std::string> out;
-  for (const std::string& a : algo_names())
-    if (std::find(algos.begin(), algos.end(), a) != algos.end()) out.push_back(a);
-  return out;
+  return names_in_table_order(summary["grid"].value("algos", std::vector<std::string>{}));
 }
 
 std::string table_i(const ReportFolder& folder) {

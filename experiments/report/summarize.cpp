@@ -38,10 +38,7 @@ BootstrapOptions bootstrap_options(const BootstrapSettings& s, int replicates, c
 
 // The grid's algorithms in the registry's order, the paper's columns.
 std::vector<std::string> ordered_algos(const Grid& grid) {
-  std::vector<std::string> out;
-  for (const std::string& a : algo_names())
-    if (contains(grid.algos, a)) out.push_back(a);
-  return out;
+  return names_in_table_order(grid.algos);
 }
 
 std::vector<std::string> ordered_datasets(const Grid& grid) {
@@ -310,7 +307,7 @@ Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptio
   const auto rank = [](const std::vector<std::string>& order, const std::string& x) {
     return std::find(order.begin(), order.end(), x) - order.begin();
   };
-  const std::vector<std::string> algo_order = algo_names();
+  const std::vector<std::string> algo_order = names_in_table_order(s.grid.algos);
   std::stable_sort(s.cells.begin(), s.cells.end(), [&](const CellSummary& a, const CellSummary& b) {
     const auto ka = std::tuple(rank(s.grid.scenarios, a.scenario), a.dataset.empty() ? 99 : rank(dataset_names(), a.dataset),
                                rank(algo_order, a.algo));

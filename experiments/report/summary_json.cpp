@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include "algos/registry.hpp"
-#include "core/contains.hpp"
 #include "experiments/report/summary.hpp"
 #include "experiments/run/json_numbers.hpp"
 
@@ -127,11 +126,10 @@ nlohmann::json summary_to_json(const Summary& s) {
   // The grid's algorithms as the registry describes them, in its order: what scripts/plot labels
   // and colours its lines with, and which one is RAPID-RL (Figure 3(b)'s).
   j["algorithms"] = nlohmann::json::array();
-  for (const Algorithm& a : algorithms())
-    if (contains(s.grid.algos, a.name))
-      j["algorithms"].push_back({{"name", a.name}, {"label", a.display_name}, {"colour", a.colour},
-                                 {"uses_prior", a.uses_prior}, {"in_paper", a.in_paper}, {"variant", a.variant},
-                                 {"ours", a.name == kRapidRl}});
+  for (const Algorithm* a : rows_in_table_order(s.grid.algos))
+    j["algorithms"].push_back({{"name", a->name}, {"label", a->display_name}, {"colour", a->colour},
+                               {"uses_prior", a->uses_prior}, {"in_paper", a->in_paper}, {"variant", a->variant},
+                               {"ours", a->name == kRapidRl}});
   j["statistics"] = {{"std", "population (ddof=0) over the ok seeds"},
                      {"iqm", "scipy.stats.trim_mean(x, 0.25)"},
                      {"interval", "percentile, stratified bootstrap"},

@@ -15,10 +15,7 @@ namespace rapid {
 namespace {
 
 std::vector<std::string> columns(const Summary& s) {
-  std::vector<std::string> out;
-  for (const std::string& a : algo_names())
-    if (contains(s.grid.algos, a)) out.push_back(a);
-  return out;
+  return names_in_table_order(s.grid.algos);
 }
 
 int decimals_for(const Summary& s) {

@@ -4,29 +4,9 @@
 #include <stdexcept>
 
 #include "core/atomic_file.hpp"
-#include "core/hash.hpp"
 #include "experiments/run/record.hpp"
 
 namespace rapid {
-
-ExternalMethod describe_external_method(const std::string& script_path, nlohmann::json config) {
-  if (!config.is_object()) throw std::invalid_argument("the method's config must be a JSON object (a dict)");
-  ExternalMethod m;
-  m.script_path = script_path;
-  try {
-    m.script_hash = fnv1a_hex(read_file(script_path));
-  } catch (const std::exception& e) {
-    throw std::invalid_argument(std::string("script: ") + e.what());
-  }
-  m.config = std::move(config);
-  return m;
-}
-
-std::string external_config_hash(const JobSpec& spec, const ExternalMethod& method) {
-  nlohmann::json key = job_hash_key(spec);
-  key["method"] = {{"script", method.script_hash}, {"config", method.config}};
-  return fnv1a_hex(key.dump());
-}
 
 ExternalRecord::ExternalRecord(JobSpec spec, ExternalMethod method)
     : spec_(std::move(spec)), method_(std::move(method)), record_(start_record(spec_)), started_(Clock::now()) {

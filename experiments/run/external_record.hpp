@@ -10,27 +10,11 @@
 #include <string>
 
 #include "core/clock.hpp"
+#include "experiments/run/external_method.hpp"
 #include "experiments/run/job.hpp"
 #include "experiments/run/trainer.hpp"
 
 namespace rapid {
-
-// What an external run depends on beyond its cell and config: the script that trained it (its
-// path as given and a hash of its bytes) and the method's own hyperparameters, a JSON object.
-struct ExternalMethod {
-  std::string script_path;
-  std::string script_hash;  // fnv1a of the file's bytes
-  nlohmann::json config = nlohmann::json::object();
-};
-
-// Reads the script and hashes it. Throws std::invalid_argument naming the file if it cannot be
-// read, or the config if it is not a JSON object.
-ExternalMethod describe_external_method(const std::string& script_path, nlohmann::json config);
-
-// The config hash of an external run: job_config_hash's cell, resolved config, dataset content and
-// scenario files, plus the method (script bytes, its own config). Editing the script or one of its
-// hyperparameters makes an earlier record stale, as a config change does.
-std::string external_config_hash(const JobSpec& spec, const ExternalMethod& method);
 
 // An external run's record being written: the log grows as the method reports, write() puts it in
 // spec.out_dir/record.json (atomically) with its status.

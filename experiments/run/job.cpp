@@ -14,6 +14,7 @@
 #include "core/hash.hpp"
 #include "envs/env.hpp"
 #include "envs/scenario_descriptor.hpp"
+#include "experiments/run/external_method.hpp"
 
 namespace rapid {
 
@@ -111,6 +112,8 @@ nlohmann::json job_hash_key(const JobSpec& spec) {
   // (A method outside the registry has no recipe.)
   if (contains(algo_names(), spec.algo))
     if (nlohmann::json fills = recipe_fills(spec.config, spec.algo); !fills.empty()) key["recipe"] = std::move(fills);
+  // A grid's external method: its script's bytes, its own config and its command.
+  if (const ExternalMethod* method = find_external_method(spec.algo)) key["method"] = external_method_key(*method);
   // A scenario file's runs also depend on its files (the built-ins' are part of the harness).
   if (is_driving_scenario(spec.scenario) && !is_builtin_scenario(spec.scenario))
     key["scenario_files"] = scenario_files_hash(*scenario_descriptor(spec.scenario));

@@ -14,6 +14,7 @@
 #include "experiments/sweep/claim_spec.hpp"
 #include "experiments/run/config_keys.hpp"
 #include "experiments/run/dataset_build.hpp"
+#include "experiments/run/external_method.hpp"
 #include "experiments/run/job.hpp"
 #include "core/json_input.hpp"
 #include "experiments/run/run_config.hpp"
@@ -28,12 +29,13 @@ namespace fs = std::filesystem;
 const std::set<std::string> kTopLevelKeys = {"name",   "description",     "scenarios", "datasets",    "algos",
                                              "seeds",  "config",          "scenario_config", "reference",
                                              "max_retries", "jobs", "profile", "axes", "scenario_files",
-                                             "algo_config", "claims"};
+                                             "algo_config", "claims", "external"};
 // An axis longer than this is a mistake, not a study (each value is validated against the config).
 constexpr std::size_t kMaxAxisValues = 1000;
 // The double the default float came from, so grid.json shows 0.1 rather than 0.100000001.
 constexpr double kDefaultReferenceNoise = 0.1;
 const std::set<std::string> kReferenceKeys = {"seed", "transitions", "noise_std", "steps"};
+const std::set<std::string> kExternalKeys = {"command", "keys", "uses_prior"};
 
 // How many points axis_points would list, without listing them (saturates instead of overflowing).
 std::size_t point_count(const Grid& grid, const std::string& scenario, const std::function<bool(const std::string&)>& reads) {
@@ -420,6 +422,62 @@ std::map<std::string, std::string> parse_scenario_files(const GridChecker& check
 }
 
 namespace {
+// The file whose bytes stand for the method in its runs' hashes: the first argument after the
+// program that names a file, else the program when it is given by path.
+std::string method_script(const std::vector<std::string>& command) {
+  for (std::size_t i = 1; i < command.size(); ++i)
+    if (fs::is_regular_file(command[i])) return command[i];
+  return command[0].find('/') != std::string::npos && fs::is_regular_file(command[0]) ? command[0] : "";
+}
+
+// "external": name → {"command": [program, args…], "keys": {…}, "uses_prior": true}, each
+// registered as a method of that name (experiments/run/external_method.hpp). An argument that
+// names a file relative to the grid file's folder is written back as its absolute path, so the
+// sweep folder's grid.json runs it from anywhere. Returns "external" as grid.json writes it.
+json parse_external(const GridChecker& check, const json& doc, const std::string& label, Grid& grid) {
+  const json& methods = check.object_or_empty(doc, "external");
+  const fs::path base = fs::absolute(fs::path(label)).parent_path();
+  json normalized = json::object();
+  for (const auto& [name, spec] : methods.items()) {
+    const std::string at = "external." + name;
+    if (name.empty() || name.size() > kMaxGridNameLength || !is_safe_name(name))
+      check.fail(at, "a method's name is 1-100 characters of [A-Za-z0-9._-]");
+    if (contains(algo_names(), name)) check.fail(at, "'" + name + "' is the harness's own algorithm; give the method a name of its own (e.g. " + name + "-torch)");
+    if (!spec.is_object()) check.fail(at, "expected an object {\"command\": [...], \"keys\": {...}}, got " + json_excerpt(spec));
+    check.only_known_keys(spec, kExternalKeys, at);
+    if (!spec.contains("command") || !spec["command"].is_array() || spec["command"].empty())
+      check.fail(at + ".command", "expected a non-empty array of strings (the program and its arguments)");
+    std::vector<std::string> command;
+    for (const json& arg : spec["command"]) {
+      if (!arg.is_string() || arg.get<std::string>().empty())
+        check.fail(at + ".command", "expected non-empty strings, got " + json_excerpt(arg));
+      std::string a = arg.get<std::string>();
+      const bool is_path = !command.empty() || a.find('/') != std::string::npos;
+      if (is_path && fs::path(a).is_relative() && fs::is_regular_file(base / a)) a = (base / a).lexically_normal().string();
+      command.push_back(std::move(a));
+    }
+    const std::string script = method_script(command);
+    if (script.empty())
+      check.fail(at + ".command", "names no script (or program by path) whose bytes the runs' config hash can cover; give its path, relative to the grid's folder");
+    const json keys = spec.contains("keys") ? spec["keys"] : json::object();
+    if (!keys.is_object()) check.fail(at + ".keys", "expected an object of the method's own hyperparameters, got " + json_excerpt(keys));
+    if (spec.contains("uses_prior") && !spec["uses_prior"].is_boolean())
+      check.fail(at + ".uses_prior", "expected true or false, got " + json_excerpt(spec["uses_prior"]));
+    const bool uses_prior = spec.value("uses_prior", true);
+    ExternalMethod method;
+    try {
+      method = describe_external_method(script, keys);
+    } catch (const std::invalid_argument& e) {
+      check.fail(at + ".command", e.what());
+    }
+    method.command = command;
+    register_external_method(name, uses_prior, method);
+    grid.external[name] = method;
+    normalized[name] = {{"command", command}, {"keys", keys}, {"uses_prior", uses_prior}};
+  }
+  return normalized;
+}
+
 // "claims": the grid's own claims (claim_spec.hpp), beside the paper's: each names only what the
 // grid has, and no id is taken twice.
 void parse_claims(const GridChecker& check, const json& doc, Grid& grid) {
@@ -467,7 +525,12 @@ Grid parse_grid(const json& doc, const std::string& label) {
   for (const auto& [name, path] : parse_scenario_files(check, doc, label, grid)) scenario_names.push_back(name);
   grid.scenarios = check.name_axis(doc, "scenarios", scenario_names, "scenario");
   grid.datasets = check.name_axis(doc, "datasets", dataset_names(), "dataset");
-  grid.algos = check.name_axis(doc, "algos", algo_names(), "algorithm");
+  const json external = parse_external(check, doc, label, grid);
+  std::vector<std::string> algo_choices = algo_names();
+  for (const auto& [name, method] : grid.external) algo_choices.push_back(name);
+  grid.algos = check.name_axis(doc, "algos", algo_choices, "algorithm");
+  for (const auto& [name, method] : grid.external)
+    if (!contains(grid.algos, name)) check.fail("external." + name, "'" + name + "' is not one of the grid's algos");
   grid.seeds = check.seed_axis(doc);
   if (doc.contains("profile")) {
     if (!doc["profile"].is_string()) check.fail("profile", "expected a string, got " + json_excerpt(doc["profile"]));
@@ -509,6 +572,7 @@ Grid parse_grid(const json& doc, const std::string& label) {
   grid.normalized["reference"] = ref;
   grid.normalized["max_retries"] = grid.max_retries;
   if (!grid.scenario_files.empty()) grid.normalized["scenario_files"] = grid.scenario_files;
+  if (!grid.external.empty()) grid.normalized["external"] = external;
   return grid;
 }
 

@@ -29,6 +29,11 @@
 //                     only, applied last. The reference agent and the dataset builds never see them,
 //                     so a scenario's own keys, an axis key and a key the algorithm does not read are
 //                     refused. `rapid tune` puts its candidates and its winners here (docs/tuning.md)
+//   "external"        optional object: name → {"command": [program, args…], "keys": {…}, "uses_prior": true}:
+//                     methods outside the harness, each run by its command with `--job JOB.json`
+//                     appended (experiments/run/external_run.hpp); named in "algos" like any other.
+//                     The runs' hashes cover the command, the script's bytes and "keys"
+//                     (docs/sweeps.md §External methods)
 //   "max_retries"     optional non-negative integer (default 2): extra attempts per failed job
 //   "jobs"            optional positive integer: worker processes when --jobs is not given
 #pragma once
@@ -42,6 +47,7 @@
 #include <vector>
 
 #include "experiments/run/dataset_build.hpp"  // ReferenceSettings, the grid's "reference" object
+#include "experiments/run/external_method.hpp"
 #include "experiments/run/run_config.hpp"     // kDefaultProfile
 #include "experiments/sweep/claim_spec.hpp"
 
@@ -70,6 +76,7 @@ struct Grid {
   std::map<std::string, long> reference_steps;  // "reference"."steps" by scenario (absent: 0)
   std::vector<GridAxis> axes;  // in key order
   std::vector<ClaimSpec> claims;  // the grid's own, checked after the paper's (claim_spec.hpp)
+  std::map<std::string, ExternalMethod> external;  // "external": name → its command, script and keys
   int max_retries = 2;
   std::optional<int> jobs;
   // The grid with every default spelled out, as written to SWEEP/grid.json. Kept as parsed (not

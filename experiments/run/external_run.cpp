@@ -1,0 +1,153 @@
+#include "experiments/run/external_run.hpp"
+
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <vector>
+
+#include "core/atomic_file.hpp"
+#include "envs/env.hpp"
+#include "envs/scenario_descriptor.hpp"
+#include "experiments/run/record.hpp"
+
+namespace rapid {
+
+namespace {
+namespace fs = std::filesystem;
+
+nlohmann::json job_document(const JobSpec& spec, const ExternalMethod& method, const std::string& profile,
+                            const std::string& hash) {
+  nlohmann::json job = {{"schema", "rapid.job/1"},
+                        {"scenario", spec.scenario},
+                        {"profile", profile},
+                        {"algo", spec.algo},
+                        {"seed", spec.seed},
+                        {"dataset", spec.dataset.empty() ? nlohmann::json(nullptr) : nlohmann::json(spec.dataset)},
+                        {"dataset_path", spec.dataset_path.empty() ? nlohmann::json(nullptr)
+                                                                   : nlohmann::json(fs::absolute(spec.dataset_path).string())},
+                        {"config", spec.config},
+                        {"method_config", method.config},
+                        {"script", method.script_path},
+                        {"command", method.command},
+                        {"out", fs::absolute(spec.out_dir).string()},
+                        {"config_hash", hash},
+                        {"scenario_file", nullptr}};
+  if (is_driving_scenario(spec.scenario) && !is_builtin_scenario(spec.scenario))
+    job["scenario_file"] = scenario_descriptor(spec.scenario)->file;
+  return job;
+}
+
+struct CommandResult {
+  int exit_code = 0;
+  int signal = 0;
+  std::string last_stderr_line;
+  std::string exec_error;  // the command could not be started
+};
+
+// The last non-empty line of what has been read so far.
+void keep_last_line(std::string& pending, std::string& last) {
+  std::size_t start = 0;
+  for (std::size_t nl; (nl = pending.find('\n', start)) != std::string::npos; start = nl + 1)
+    if (nl > start) last = pending.substr(start, nl - start);
+  pending.erase(0, start);
+  if (pending.size() > 4096) pending.erase(0, pending.size() - 4096);  // a line is shown, not kept whole
+}
+
+CommandResult run_command(std::vector<std::string> argv) {
+  CommandResult result;
+  int pipe_fds[2];
+  if (::pipe(pipe_fds) != 0) throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
+  std::vector<char*> args;
+  for (std::string& a : argv) args.push_back(a.data());
+  args.push_back(nullptr);
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
+  if (pid == 0) {
+    // The method dies with this process: a --job-timeout or an interrupted sweep stops both.
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(127);
+    ::dup2(pipe_fds[1], STDERR_FILENO);
+    ::close(pipe_fds[0]);
+    ::close(pipe_fds[1]);
+    ::execvp(args[0], args.data());
+    const std::string message = std::string("cannot start '") + args[0] + "': " + std::strerror(errno) + "\n";
+    [[maybe_unused]] const auto n = ::write(STDERR_FILENO, message.data(), message.size());
+    ::_exit(127);
+  }
+  ::close(pipe_fds[1]);
+  std::string pending;
+  char buffer[4096];
+  for (;;) {
+    const ssize_t n = ::read(pipe_fds[0], buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    std::cerr.write(buffer, n);
+    pending.append(buffer, static_cast<std::size_t>(n));
+    keep_last_line(pending, result.last_stderr_line);
+  }
+  std::cerr.flush();
+  if (!pending.empty()) result.last_stderr_line = pending;
+  ::close(pipe_fds[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
+  if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
+  else result.exit_code = WEXITSTATUS(status);
+  return result;
+}
+
+// What is wrong with the record the command left, or nothing.
+std::optional<std::string> record_problem(const JobSpec& spec, const std::string& hash) {
+  const std::string path = spec.out_dir + "/" + job_files::kRecord;
+  if (!fs::exists(path)) return "it wrote no " + std::string(job_files::kRecord) + " (rapid_harness.RunRecord.from_job writes it)";
+  if (!is_run_record_file(path)) return "its " + std::string(job_files::kRecord) + " is not a run record";
+  const nlohmann::json record = nlohmann::json::parse(read_file(path), nullptr, false);
+  if (record.is_discarded()) return "its " + std::string(job_files::kRecord) + " is not JSON";
+  if (record.value("config_hash", "") != hash)
+    return "its record's config_hash is not this job's (the script or its config changed while it ran, or it wrote "
+           "another job's record)";
+  if (record.value("status", "") != "ok")
+    return "it recorded status '" + record.value("status", "?") + "'" +
+           (record.contains("error") && record["error"].is_string() ? ": " + record["error"].get<std::string>() : "");
+  return std::nullopt;
+}
+
+}  // namespace
+
+int run_external_job(const JobSpec& spec, const ExternalMethod& method, const std::string& profile) {
+  const std::string hash = external_config_hash(spec, method);
+  fs::create_directories(spec.out_dir);
+  const std::string job_path = fs::absolute(spec.out_dir + "/" + kJobFile).string();
+  write_file_atomic(job_path, job_document(spec, method, profile, hash).dump(1));
+  std::error_code ignored;
+  fs::remove(spec.out_dir + "/" + job_files::kRecord, ignored);  // an earlier attempt's is not this one's
+
+  std::vector<std::string> argv = method.command;
+  argv.insert(argv.end(), {"--job", job_path});
+  const CommandResult r = run_command(argv);
+  const std::string who = "rapid run: " + spec.algo + "'s command";
+  const std::string said = r.last_stderr_line.empty() ? "" : ": " + r.last_stderr_line;
+  if (r.signal != 0) {
+    std::cerr << who << " was killed by signal " << r.signal << said << "\n";
+    return 1;
+  }
+  if (r.exit_code != 0) {
+    std::cerr << who << " exited with code " << r.exit_code << said << "\n";
+    return 1;
+  }
+  if (const auto problem = record_problem(spec, hash)) {
+    std::cerr << who << " exited 0 but " << *problem << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace rapid
