@@ -75,6 +75,8 @@ class ExternalMethodInAGrid(unittest.TestCase):
         row = [a for a in summary["algorithms"] if a["name"] == "constant"]
         self.assertEqual(len(row), 1)
         self.assertTrue(row[0]["uses_prior"] and row[0]["colour"])
+        with open(os.path.join(out, "report.html")) as f:
+            self.assertIn('<th scope="col">constant</th>', f.read())
         # Resumes: nothing to run again.
         again = self.rapid("sweep", path, "--out", out, "--no-summary")
         self.assertIn("0 jobs run", again.stdout + again.stderr)
