@@ -105,7 +105,8 @@ std::deque<Algorithm>& external_rows() {
 const char* const kExternalColours[] = {"tab:pink", "black", "gold", "navy", "teal", "magenta", "lime", "maroon"};
 }  // namespace
 
-const Algorithm& register_external_algorithm(const std::string& name, bool uses_prior) {
+const Algorithm& register_external_algorithm(const std::string& name, bool uses_prior,
+                                             std::vector<const MethodKey*> keys) {
   for (const Algorithm& a : algorithms())
     if (a.name == name) throw std::invalid_argument("'" + name + "' is the harness's own algorithm; give the method a name of its own");
   std::deque<Algorithm>& rows = external_rows();
@@ -118,6 +119,7 @@ const Algorithm& register_external_algorithm(const std::string& name, bool uses_
   it->name = name;
   it->display_name = name;
   it->uses_prior = uses_prior;
+  it->keys = std::move(keys);
   it->in_paper = false;
   return *it;
 }

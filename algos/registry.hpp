@@ -64,11 +64,13 @@ const std::vector<Algorithm>& algorithms();
 std::vector<std::string> algo_names();
 
 // A method outside the harness (a command a grid names, experiments/run/external_method.hpp) as
-// a row: its name, whether it uses prior data, no agent (`make` is null) and no method keys, so it
-// reads every shared key. Registered when a grid that names it is loaded; registering a name again
+// a row: its name, whether it uses prior data, no agent (`make` is null) and the method keys it
+// says it reads (ε, λ_BC, …: then axes, algo_config and tuning vary them for it), besides every
+// shared key. Registered when a grid that names it is loaded; registering a name again
 // replaces the row (rows stay where they are: find_algorithm's references remain valid). Throws
 // std::invalid_argument when the name is one of algorithms()'.
-const Algorithm& register_external_algorithm(const std::string& name, bool uses_prior);
+const Algorithm& register_external_algorithm(const std::string& name, bool uses_prior,
+                                             std::vector<const MethodKey*> keys = {});
 // The row find_algorithm would return, or null: the table's, then the registered external ones.
 const Algorithm* lookup_algorithm(const std::string& name);
 // The rows of `names`: the table's in its order, then the others (external methods) in the order given.

@@ -320,9 +320,13 @@ class PyRunRecord {
 
   // `result`: what evaluate() returns (its `returns`, `return_std`, `collision_rate`), at `step`
   // decisions of training.
-  void add_eval(long step, const py::dict& result) {
+  // `target_step`: the multiple of eval_every the evaluation stands for, where the curves of all
+  // seeds align (a C++ run evaluates at the first episode end past it); by default `step`.
+  void add_eval(long step, const py::dict& result, const py::object& target_step) {
     const EvalResult r = eval_result(result, "add_eval");
-    record_.log().eval.push_back({step, step, r.return_mean, r.return_std, r.collision_rate});
+    const long target = target_step.is_none() ? step : target_step.cast<long>();
+    if (target < 0 || target > step) throw std::invalid_argument("add_eval: target_step must be from 0 to step");
+    record_.log().eval.push_back({step, target, r.return_mean, r.return_std, r.collision_rate});
   }
 
   void add_train_episode(long step, double ret, int length, bool collision) {
@@ -335,6 +339,8 @@ class PyRunRecord {
     LossPoint p;
     p.step = step;
     p.critic_loss = critic, p.actor_loss = actor, p.q_mean = q_mean, p.bc_prior = bc_prior, p.bc_online = bc_online;
+    // The gradient sizes a C++ run measures at the actor's output are unknown here: null, not 0.
+    p.q_grad_prior = p.q_grad_online = p.bc_grad_prior = p.bc_grad_online = std::numeric_limits<double>::quiet_NaN();
     record_.log().losses.push_back(p);
   }
 
@@ -479,7 +485,7 @@ class Box:
            py::arg("dataset_name") = py::none(), py::arg("script") = py::none(), py::arg("method_config") = py::none())
       .def_static("from_job", py::overload_cast<const std::string&>(&PyRunRecord::from_job), py::arg("path"),
                   "The record of the job a sweep gave an external method (its --job file).")
-      .def("add_eval", &PyRunRecord::add_eval, py::arg("step"), py::arg("result"))
+      .def("add_eval", &PyRunRecord::add_eval, py::arg("step"), py::arg("result"), py::arg("target_step") = py::none())
       .def("add_train_episode", &PyRunRecord::add_train_episode, py::arg("step"), py::arg("ret"), py::arg("length"),
            py::arg("collision") = false)
       .def("add_losses", &PyRunRecord::add_losses, py::arg("step"), py::kw_only(),

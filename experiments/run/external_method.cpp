@@ -42,8 +42,9 @@ std::string external_config_hash(const JobSpec& spec, const ExternalMethod& meth
   return fnv1a_hex(key.dump());
 }
 
-void register_external_method(const std::string& name, bool uses_prior, ExternalMethod method) {
-  register_external_algorithm(name, uses_prior);
+void register_external_method(const std::string& name, bool uses_prior, const std::vector<const MethodKey*>& reads,
+                              ExternalMethod method) {
+  register_external_algorithm(name, uses_prior, reads);
   registered()[name] = std::move(method);
 }
 

@@ -34,9 +34,10 @@ nlohmann::json external_method_key(const ExternalMethod& method);
 std::string external_config_hash(const JobSpec& spec, const ExternalMethod& method);
 
 // Registers a grid's method under `name` (also as a row of the algorithm registry, with
-// `uses_prior`); a second registration of the name replaces the first. Throws
+// `uses_prior` and the method keys it `reads`); a second registration of the name replaces the first. Throws
 // std::invalid_argument for a name of the harness's own algorithms.
-void register_external_method(const std::string& name, bool uses_prior, ExternalMethod method);
+void register_external_method(const std::string& name, bool uses_prior, const std::vector<const MethodKey*>& reads,
+                              ExternalMethod method);
 // The registered method of that name, or null (every algorithm of algos/registry.hpp).
 const ExternalMethod* find_external_method(const std::string& name);
 

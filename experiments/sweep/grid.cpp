@@ -35,7 +35,7 @@ constexpr std::size_t kMaxAxisValues = 1000;
 // The double the default float came from, so grid.json shows 0.1 rather than 0.100000001.
 constexpr double kDefaultReferenceNoise = 0.1;
 const std::set<std::string> kReferenceKeys = {"seed", "transitions", "noise_std", "steps"};
-const std::set<std::string> kExternalKeys = {"command", "keys", "uses_prior"};
+const std::set<std::string> kExternalKeys = {"command", "keys", "uses_prior", "reads"};
 
 // How many points axis_points would list, without listing them (saturates instead of overflowing).
 std::size_t point_count(const Grid& grid, const std::string& scenario, const std::function<bool(const std::string&)>& reads) {
@@ -464,6 +464,20 @@ json parse_external(const GridChecker& check, const json& doc, const std::string
     if (spec.contains("uses_prior") && !spec["uses_prior"].is_boolean())
       check.fail(at + ".uses_prior", "expected true or false, got " + json_excerpt(spec["uses_prior"]));
     const bool uses_prior = spec.value("uses_prior", true);
+    // "reads": the harness's method keys it takes from the config (a PyTorch RAPID-RL's ε), so that
+    // an axis, algo_config or a tuning space can vary them for it.
+    std::vector<const MethodKey*> reads;
+    std::vector<std::string> read_names;
+    if (spec.contains("reads") && !spec["reads"].is_array())
+      check.fail(at + ".reads", "expected an array of method keys, got " + json_excerpt(spec["reads"]));
+    for (const json& k : spec.value("reads", json::array())) {
+      std::vector<std::string> known;
+      for (const MethodKey* m : method_keys()) known.push_back(m->name);
+      const auto it = k.is_string() ? std::find(known.begin(), known.end(), k.get<std::string>()) : known.end();
+      if (it == known.end()) check.fail(at + ".reads", json_excerpt(k) + " is not a method key; expected some of " + comma_joined(known));
+      reads.push_back(method_keys()[static_cast<std::size_t>(it - known.begin())]);
+      read_names.push_back(*it);
+    }
     ExternalMethod method;
     try {
       method = describe_external_method(script, keys);
@@ -471,9 +485,9 @@ json parse_external(const GridChecker& check, const json& doc, const std::string
       check.fail(at + ".command", e.what());
     }
     method.command = command;
-    register_external_method(name, uses_prior, method);
+    register_external_method(name, uses_prior, reads, method);
     grid.external[name] = method;
-    normalized[name] = {{"command", command}, {"keys", keys}, {"uses_prior", uses_prior}};
+    normalized[name] = {{"command", command}, {"keys", keys}, {"uses_prior", uses_prior}, {"reads", read_names}};
   }
   return normalized;
 }

@@ -29,7 +29,8 @@
 //                     only, applied last. The reference agent and the dataset builds never see them,
 //                     so a scenario's own keys, an axis key and a key the algorithm does not read are
 //                     refused. `rapid tune` puts its candidates and its winners here (docs/tuning.md)
-//   "external"        optional object: name → {"command": [program, args…], "keys": {…}, "uses_prior": true}:
+//   "external"        optional object: name → {"command": [program, args…], "keys": {…}, "uses_prior": true,
+//                     "reads": [method keys, e.g. "epsilon"]}:
 //                     methods outside the harness, each run by its command with `--job JOB.json`
 //                     appended (experiments/run/external_run.hpp); named in "algos" like any other.
 //                     The runs' hashes cover the command, the script's bytes and "keys"

@@ -113,6 +113,20 @@ class ExternalMethodInAGrid(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "config_hash"):
             rh.RunRecord.from_job(job)
 
+    def test_the_method_keys_it_reads_are_the_grids_to_set(self):
+        external = self.constant()
+        external["constant"]["reads"] = ["epsilon"]
+        path = self.write_grid(grid(external, ["constant"], seeds=[0], algo_config={"pendulum": {"constant": {"epsilon": 0.3}}}))
+        out = os.path.join(self.dir, "out")
+        self.assertEqual(self.rapid("sweep", path, "--out", out, "--no-summary").returncode, 0)
+        job = rh.load_job(os.path.join(out, "jobs", "pendulum", "initial", "constant", "seed0", "job.json"))
+        self.assertEqual(job["config"]["epsilon"], 0.3)
+        # Without "reads", ε is another algorithm's key: the grid may not set it for this method.
+        path = self.write_grid(grid(self.constant(), ["constant"], algo_config={"pendulum": {"constant": {"epsilon": 0.3}}}))
+        run = self.rapid("sweep", path, "--out", os.path.join(self.dir, "never"))
+        self.assertEqual(run.returncode, 2)
+        self.assertIn("'constant' does not read 'epsilon'", run.stderr)
+
     def test_a_file_that_is_no_job_is_refused(self):
         not_a_job = self.write_grid({"schema": "rapid.run/1"}, "record.json")
         for read in (rh.load_job, rh.RunRecord.from_job):
@@ -132,6 +146,8 @@ class ExternalMethodInAGrid(unittest.TestCase):
             ({"constant": {"command": [sys.executable, "constant_method.py"], "prior": True}}, ["constant"],
              "external.constant.prior: unknown key"),
             (self.constant(), ["ddpg"], "external.constant: 'constant' is not one of the grid's algos"),
+            ({"constant": {"command": [sys.executable, "constant_method.py"], "reads": ["steps"]}}, ["constant"],
+             "external.constant.reads: \"steps\" is not a method key"),
             ({}, ["constant"], "algos[0]: unknown algorithm 'constant'"),
         ]
         for external, algos, message in cases:
