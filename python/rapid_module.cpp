@@ -19,13 +19,12 @@
 #include "core/clock.hpp"
 #include "core/contains.hpp"
 #include "core/dataset_io.hpp"
-#include "core/json_input.hpp"
 #include "core/printable.hpp"
 #include "core/rng.hpp"
 #include "core/statistics.hpp"
 #include "envs/env.hpp"
-#include "envs/scenario_descriptor.hpp"
 #include "experiments/run/external_record.hpp"
+#include "experiments/run/external_run.hpp"
 #include "experiments/run/run_config.hpp"
 #include "experiments/run/trainer.hpp"
 
@@ -276,46 +275,11 @@ class PyRunRecord {
   // its cell, resolved config and dataset as the job file gives them, its method as the grid named
   // it; refused when the hash differs from the one the job asks for (the script changed since).
   static PyRunRecord from_job(const std::string& path) {
-    const nlohmann::json job = read_job(path);
-    try {
-      return from_job(path, job);
-    } catch (const nlohmann::json::exception& e) {  // a key missing or of the wrong type
-      throw std::invalid_argument("job " + path + ": " + e.what());
-    }
-  }
-
-  static PyRunRecord from_job(const std::string& path, const nlohmann::json& job) {
-    JobSpec spec;
-    spec.scenario = job.at("scenario").get<std::string>();
-    spec.algo = job.at("algo").get<std::string>();
-    spec.seed = job.at("seed").get<std::uint64_t>();
-    spec.config = job.at("config");
-    spec.out_dir = job.at("out").get<std::string>();
-    if (!job.at("dataset_path").is_null()) {
-      spec.dataset_path = job["dataset_path"].get<std::string>();
-      spec.dataset = job.at("dataset").get<std::string>();
-    }
-    ExternalMethod method = describe_external_method(job.at("script").get<std::string>(), job.at("method_config"));
-    method.command = job.at("command").get<std::vector<std::string>>();
-    if (external_config_hash(spec, method) != job.at("config_hash").get<std::string>())
+    ExternalJob job = read_external_job(path);
+    if (external_config_hash(job.spec, job.method) != job.config_hash)
       throw std::invalid_argument("job " + path + ": the record would not carry the job's config_hash (the script, "
                                   "the dataset or the harness changed since the job was written)");
-    return PyRunRecord(ExternalRecord(std::move(spec), std::move(method)));
-  }
-
-  // A job file as a JSON object, its scenario file (if any) registered so Env(job["scenario"]) finds it.
-  static nlohmann::json read_job(const std::string& path) {
-    nlohmann::json job;
-    try {
-      job = read_json_input(path);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument("job " + path + ": " + e.what());
-    }
-    if (!job.is_object() || job.value("schema", "") != "rapid.job/1")
-      throw std::invalid_argument("job " + path + ": not a job file (schema rapid.job/1) that rapid run writes");
-    if (job.contains("scenario_file") && job["scenario_file"].is_string())
-      register_scenario_file(job.at("scenario").get<std::string>(), job["scenario_file"].get<std::string>());
-    return job;
+    return PyRunRecord(ExternalRecord(std::move(job.spec), std::move(job.method)));
   }
 
   // `result`: what evaluate() returns (its `returns`, `return_std`, `collision_rate`), at `step`
@@ -483,7 +447,7 @@ class Box:
            py::arg("out"), py::arg("scenario"), py::arg("algo"), py::arg("seed"), py::kw_only(),
            py::arg("profile") = std::string(kDefaultProfile), py::arg("config") = py::none(), py::arg("dataset") = py::none(),
            py::arg("dataset_name") = py::none(), py::arg("script") = py::none(), py::arg("method_config") = py::none())
-      .def_static("from_job", py::overload_cast<const std::string&>(&PyRunRecord::from_job), py::arg("path"),
+      .def_static("from_job", &PyRunRecord::from_job, py::arg("path"),
                   "The record of the job a sweep gave an external method (its --job file).")
       .def("add_eval", &PyRunRecord::add_eval, py::arg("step"), py::arg("result"), py::arg("target_step") = py::none())
       .def("add_train_episode", &PyRunRecord::add_train_episode, py::arg("step"), py::arg("ret"), py::arg("length"),
@@ -498,7 +462,7 @@ class Box:
   m.def(
       "load_job",
       [](const std::string& path) {
-        return py::module_::import("json").attr("loads")(PyRunRecord::read_job(path).dump());
+        return py::module_::import("json").attr("loads")(read_external_job(path).document.dump());
       },
       py::arg("path"), "The job file a sweep gives an external method's command (--job PATH), as a dict.");
   m.def("evaluate", &py_evaluate, py::arg("policy"), py::arg("scenario"), py::arg("profile") = std::string(kDefaultProfile),

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/atomic_file.hpp"
+#include "core/json_input.hpp"
 #include "envs/env.hpp"
 #include "envs/scenario_descriptor.hpp"
 #include "experiments/run/record.hpp"
@@ -24,7 +25,7 @@ namespace fs = std::filesystem;
 
 nlohmann::json job_document(const JobSpec& spec, const ExternalMethod& method, const std::string& profile,
                             const std::string& hash) {
-  nlohmann::json job = {{"schema", "rapid.job/1"},
+  nlohmann::json job = {{"schema", kJobSchema},
                         {"scenario", spec.scenario},
                         {"profile", profile},
                         {"algo", spec.algo},
@@ -48,7 +49,6 @@ struct CommandResult {
   int exit_code = 0;
   int signal = 0;
   std::string last_stderr_line;
-  std::string exec_error;  // the command could not be started
 };
 
 // The last non-empty line of what has been read so far.
@@ -108,9 +108,13 @@ CommandResult run_command(std::vector<std::string> argv) {
 std::optional<std::string> record_problem(const JobSpec& spec, const std::string& hash) {
   const std::string path = spec.out_dir + "/" + job_files::kRecord;
   if (!fs::exists(path)) return "it wrote no " + std::string(job_files::kRecord) + " (rapid_harness.RunRecord.from_job writes it)";
-  if (!is_run_record_file(path)) return "its " + std::string(job_files::kRecord) + " is not a run record";
-  const nlohmann::json record = nlohmann::json::parse(read_file(path), nullptr, false);
-  if (record.is_discarded()) return "its " + std::string(job_files::kRecord) + " is not JSON";
+  nlohmann::json record;
+  try {
+    record = read_json_input(path);
+  } catch (const std::invalid_argument&) {
+  }
+  if (!record.is_object() || record.value("schema", "") != kRunRecordSchema)
+    return "its " + std::string(job_files::kRecord) + " is not a run record";
   if (record.value("config_hash", "") != hash)
     return "its record's config_hash is not this job's (the script or its config changed while it ran, or it wrote "
            "another job's record)";
@@ -120,7 +124,43 @@ std::optional<std::string> record_problem(const JobSpec& spec, const std::string
   return std::nullopt;
 }
 
+// The job and method a job document describes (the inverse of job_document).
+ExternalJob parse_job(const nlohmann::json& document) {
+  ExternalJob job;
+  job.document = document;
+  job.spec.scenario = document.at("scenario").get<std::string>();
+  job.spec.algo = document.at("algo").get<std::string>();
+  job.spec.seed = document.at("seed").get<std::uint64_t>();
+  job.spec.config = document.at("config");
+  job.spec.out_dir = document.at("out").get<std::string>();
+  if (!document.at("dataset_path").is_null()) {
+    job.spec.dataset_path = document["dataset_path"].get<std::string>();
+    job.spec.dataset = document.at("dataset").get<std::string>();
+  }
+  job.method = describe_external_method(document.at("script").get<std::string>(), document.at("method_config"));
+  job.method.command = document.at("command").get<std::vector<std::string>>();
+  job.config_hash = document.at("config_hash").get<std::string>();
+  return job;
+}
+
 }  // namespace
+
+ExternalJob read_external_job(const std::string& path) {
+  nlohmann::json document;
+  try {
+    document = read_json_input(path);
+    if (!document.is_object() || document.value("schema", "") != kJobSchema)
+      throw std::invalid_argument(std::string("not a job file (schema ") + kJobSchema + ") that rapid run writes");
+    // Registered before the job is parsed: its hash covers the scenario file's files.
+    if (document.contains("scenario_file") && document["scenario_file"].is_string())
+      register_scenario_file(document.at("scenario").get<std::string>(), document["scenario_file"].get<std::string>());
+    return parse_job(document);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("job " + path + ": " + e.what());
+  } catch (const nlohmann::json::exception& e) {  // a field missing or of the wrong type
+    throw std::invalid_argument("job " + path + ": " + e.what());
+  }
+}
 
 int run_external_job(const JobSpec& spec, const ExternalMethod& method, const std::string& profile) {
   const std::string hash = external_config_hash(spec, method);

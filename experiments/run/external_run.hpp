@@ -11,6 +11,7 @@
 namespace rapid {
 
 inline constexpr const char* kJobFile = "job.json";  // in the job's folder: what the command is given
+inline constexpr const char* kJobSchema = "rapid.job/1";
 
 // Writes spec.out_dir/job.json (schema rapid.job/1: the cell, the scenario file if any, the
 // profile, the resolved config, the dataset file, the method's config, script and command, the
@@ -21,5 +22,17 @@ inline constexpr const char* kJobFile = "job.json";  // in the job's folder: wha
 // command's exit code or signal and its stderr's last line, a missing or foreign record, or the
 // record's own error) and returns 1.
 int run_external_job(const JobSpec& spec, const ExternalMethod& method, const std::string& profile);
+
+// A job file as run_external_job wrote it: the document (what a script reads), the job and method
+// it describes, the config hash its record must carry. Registers the job's scenario file, if any,
+// so that its scenario is known by name in this process. Throws std::invalid_argument("job PATH:
+// …") for a file that is not such a job or lacks one of its fields.
+struct ExternalJob {
+  nlohmann::json document;
+  JobSpec spec;
+  ExternalMethod method;
+  std::string config_hash;
+};
+ExternalJob read_external_job(const std::string& path);
 
 }  // namespace rapid

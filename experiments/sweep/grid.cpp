@@ -470,13 +470,16 @@ json parse_external(const GridChecker& check, const json& doc, const std::string
     std::vector<std::string> read_names;
     if (spec.contains("reads") && !spec["reads"].is_array())
       check.fail(at + ".reads", "expected an array of method keys, got " + json_excerpt(spec["reads"]));
+    const std::vector<const MethodKey*> known = method_keys();
     for (const json& k : spec.value("reads", json::array())) {
-      std::vector<std::string> known;
-      for (const MethodKey* m : method_keys()) known.push_back(m->name);
-      const auto it = k.is_string() ? std::find(known.begin(), known.end(), k.get<std::string>()) : known.end();
-      if (it == known.end()) check.fail(at + ".reads", json_excerpt(k) + " is not a method key; expected some of " + comma_joined(known));
-      reads.push_back(method_keys()[static_cast<std::size_t>(it - known.begin())]);
-      read_names.push_back(*it);
+      const auto it = std::find_if(known.begin(), known.end(), [&](const MethodKey* m) { return k.is_string() && k == m->name; });
+      if (it == known.end()) {
+        std::vector<std::string> names;
+        for (const MethodKey* m : known) names.push_back(m->name);
+        check.fail(at + ".reads", json_excerpt(k) + " is not a method key; expected some of " + comma_joined(names));
+      }
+      reads.push_back(*it);
+      read_names.push_back((*it)->name);
     }
     ExternalMethod method;
     try {
