@@ -418,6 +418,19 @@ class Box:
   m.def("scenarios", [] { return env_names(); }, "The built-in scenario names (a scenario file's path works too).");
   m.def("profiles", [] { return config_profiles(); }, "The config profiles (short, flow).");
   m.def(
+      "algorithm",
+      [](const std::string& name) {
+        const Algorithm& a = find_algorithm(name);
+        nlohmann::json row = {{"name", a.name}, {"uses_prior", a.uses_prior}, {"keys", nlohmann::json::array()},
+                              {"recipe", nlohmann::json::object()}};
+        for (const MethodKey* k : a.keys) row["keys"].push_back(k->name);
+        for (const auto& [key, value] : a.recipe) row["recipe"][key] = value;
+        return py::module_::import("json").attr("loads")(row.dump());
+      },
+      py::arg("name"),
+      "A harness algorithm's registry row: uses_prior, the method keys it reads and its recipe (the published values "
+      "a run takes where its config leaves the key out), so a reimplementation reads them from here.");
+  m.def(
       "config",
       [](const std::string& scenario, const std::string& profile, const py::object& overrides) {
         return py::module_::import("json").attr("loads")(python_config(scenario, profile, overrides).json.dump());

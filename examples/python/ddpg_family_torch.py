@@ -21,15 +21,12 @@ import rapid_harness as rh
 
 # Keys beyond the shared ones and the value a run takes when neither the grid's `keys` nor the config
 # give one: the backbone's neutral values (algos/actor_critic.hpp, experiments/run/config_keys.cpp),
-# overridden by td3-bc's recipe (algos/td3_bc.hpp td3_bc_recipe). A method reads only its registry
-# row's keys (algos/registry.cpp) plus the shared critic_layer_norm and init; the rest stay neutral.
+# overridden by the method's recipe. A method reads only its registry row's keys plus the shared
+# critic_layer_norm and init; the rest stay neutral. The rows and recipes (the published values,
+# e.g. td3-bc's) come from the harness itself, rh.algorithm(name), so they cannot drift from the C++.
 NEUTRAL = {"critic_layer_norm": True, "init": "ddpg", "critic_ensemble": 1, "critic_subset": 1, "policy_delay": 1,
            "target_noise": 0.0, "target_noise_clip": 0.0, "bc_q_alpha": 0.0, "epsilon": None}
-RECIPE = {"td3-bc": {"critic_ensemble": 2, "critic_subset": 2, "policy_delay": 2, "target_noise": 0.2,
-                     "target_noise_clip": 0.5, "bc_q_alpha": 2.5, "critic_layer_norm": False, "init": "pytorch"}}
-READS = {"ddpg": set(), "rapid-rl": {"epsilon", "bc_q_alpha"},
-         "td3-bc": {"critic_ensemble", "critic_subset", "policy_delay", "target_noise", "target_noise_clip",
-                    "bc_q_alpha"}}
+METHODS = ("ddpg", "rapid-rl", "td3-bc")
 
 
 def fail(message):
@@ -46,10 +43,11 @@ def diverged(rec, why, n_updates):
 
 def method_settings(method, config, own):
     """Each key from the grid's `keys` (method_config), else the config, else the recipe, else neutral."""
-    reads = READS[method] | {"critic_layer_norm", "init"}
+    row = rh.algorithm(method)
+    reads = set(row["keys"]) | {"critic_layer_norm", "init"}
     if set(own) - reads:
         fail(f"--method {method} reads no key {', '.join(sorted(set(own) - reads))}; reads {', '.join(sorted(reads))}")
-    return {key: own.get(key, config.get(key, RECIPE.get(method, {}).get(key, neutral))) if key in reads else neutral
+    return {key: own.get(key, config.get(key, row["recipe"].get(key, neutral))) if key in reads else neutral
             for key, neutral in NEUTRAL.items()}
 
 
@@ -296,8 +294,8 @@ def main():
     parser.add_argument("--method", required=True)
     parser.add_argument("--job", required=True)
     args = parser.parse_args()
-    if args.method not in READS:
-        fail(f"unknown --method '{args.method}'; expected one of {', '.join(READS)}")
+    if args.method not in METHODS:
+        fail(f"unknown --method '{args.method}'; expected one of {', '.join(METHODS)}")
     job = rh.load_job(args.job)
     job["path"] = args.job
     if args.method != "ddpg" and job["dataset_path"] is None:

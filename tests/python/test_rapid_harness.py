@@ -264,6 +264,20 @@ class Evaluate(unittest.TestCase):
             rh.evaluate(lambda obs: np.zeros(1), "pendulum", episodes=0)
 
 
+class Algorithms(unittest.TestCase):
+    def test_a_row_gives_the_keys_and_the_published_recipe(self):
+        td3 = rh.algorithm("td3-bc")
+        self.assertTrue(td3["uses_prior"])
+        self.assertIn("policy_delay", td3["keys"])
+        # TD3+BC's published values (sfujim/TD3_BC), as the C++ runs take them.
+        self.assertEqual((td3["recipe"]["bc_q_alpha"], td3["recipe"]["policy_delay"], td3["recipe"]["critic_layer_norm"]),
+                         (2.5, 2, False))
+        self.assertEqual(rh.algorithm("rapid-rl")["keys"], ["epsilon", "bc_q_alpha"])
+        self.assertFalse(rh.algorithm("ddpg")["uses_prior"])
+        with self.assertRaisesRegex(ValueError, "unknown algorithm 'sac'"):
+            rh.algorithm("sac")
+
+
 class RunRecords(unittest.TestCase):
     """A Python method's record is a `rapid run` record: the same schema, cell, resolved config and
     final return, with a hash that covers the script and the method's own keys."""
