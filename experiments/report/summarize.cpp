@@ -93,6 +93,7 @@ CellSummary summarize_cell(const SweepFolder& folder, const std::vector<const Sw
   cell.bc_prior = mean_curve(pointers, "bc_loss", "step", "prior");
   cell.bc_online = mean_curve(pointers, "bc_loss", "step", "online");
   cell.q_value = mean_curve(pointers, "losses", "step", "q_mean");
+  cell.temperature = mean_curve(pointers, "losses", "step", "temperature");
   cell.collision_rate = mean_eval_curve(pointers, "collision_rate");
   cell.q_grad_prior = mean_curve(pointers, "gradients", "step", "q_prior");
   cell.q_grad_online = mean_curve(pointers, "gradients", "step", "q_online");

@@ -62,6 +62,7 @@ struct CellSummary {
   MeanCurve eval;                       // return_mean over target_step
   MeanCurve bc_prior, bc_online;        // rapid-rl and other prior algorithms; prior empty without one
   MeanCurve q_value;                    // the critic's mean Q over the batch (losses.q_mean)
+  MeanCurve temperature;                // a learned entropy temperature α (losses.temperature; rlpd-sac)
   MeanCurve collision_rate;             // share of evaluation episodes ended by a collision (driving)
   // The two forces on the actor at its output (records' "gradients"): the Q term's λ‖∂Q/∂a‖ and
   // the imitation term's ‖2·w·(π(s) − a)‖, on the batch's prior and online halves.

@@ -49,6 +49,7 @@ nlohmann::json cell_json(const CellSummary& c) {
           {"q_curve", curve_json(c.q_value)},
           {"collision_curve", curve_json(c.collision_rate)}};
   if (!c.axis.empty()) j["axis"] = point_json(c.axis);  // absent without axes: older summaries stay as they were
+  if (!c.temperature.empty()) j["temperature_curve"] = curve_json(c.temperature);  // only methods that learn one
   if (!c.q_grad_online.empty())  // absent for records that predate the gradient log
     j["gradient_curves"] = {{"q_prior", curve_json(c.q_grad_prior)},
                             {"q_online", curve_json(c.q_grad_online)},

@@ -169,6 +169,39 @@ std::string end_of_training_markdown(const Summary& s) {
   return out.str();
 }
 
+// A learned entropy temperature's course (records that log losses.temperature: RLPD (SAC)): the
+// seeds' mean ± std at each quarter of training, and α(T) ÷ α(3T/4), so a reader sees whether it
+// settles and where. Empty when no cell learns one.
+std::string temperature_markdown(const Summary& s) {
+  if (std::none_of(s.cells.begin(), s.cells.end(), [](const CellSummary& c) { return !c.temperature.empty(); }))
+    return "";
+  std::ostringstream out;
+  out << "\n## The learned temperature\n\nThe entropy temperature α at the logged update nearest each quarter of "
+         "training, mean ± std over the ok seeds, and the last quarter's change α(T) ÷ α(3T/4) of the means "
+         "(1: settled; below 1: still falling).\n\n| Scenario | Dataset | Algorithm | T/4 | T/2 | 3T/4 | T | α(T) ÷ α(3T/4) |\n"
+         "|---|---|---|---:|---:|---:|---:|---:|\n";
+  for (const CellSummary& c : s.cells) {
+    const MeanCurve& a = c.temperature;
+    if (c.n_ok == 0 || a.empty()) continue;
+    const auto at = [&](double fraction) {
+      const double target = fraction * a.step.back();
+      std::size_t best = 0;
+      for (std::size_t i = 1; i < a.step.size(); ++i)
+        if (std::abs(a.step[i] - target) < std::abs(a.step[best] - target)) best = i;
+      return best;
+    };
+    out << "| " << scenario_display_name(c.scenario) << " | " << (c.dataset.empty() ? "—" : dataset_display_name(c.dataset))
+        << " | " << algo_display_name(c.algo) << " |";
+    for (const double q : {0.25, 0.5, 0.75, 1.0}) {
+      const std::size_t i = at(q);
+      out << " " << fixed(a.mean[i], 3) << " ± " << fixed(a.std[i], 3) << " |";
+    }
+    const double before = a.mean[at(0.75)];
+    out << " " << (before > 0 ? fixed(a.mean.back() / before, 2) : "—") << " |\n";
+  }
+  return out.str();
+}
+
 // What the runs cost (s.run_costs): per scenario the median wall time of an algorithm's ok run with
 // its range, then each algorithm's ok runs summed. Empty when no record says its time.
 std::string run_cost_markdown(const Summary& s) {
@@ -279,6 +312,7 @@ std::string table_markdown(const Summary& s) {
   }
   if (!s.sensitivity.empty()) out << sensitivity_markdown(s, decimals);
   out << end_of_training_markdown(s);
+  out << temperature_markdown(s);
   if (!s.aggregate.empty()) {
     out << "\n## IQM per algorithm over all cells\n\n"
         << "Interquartile mean of every ok run's final return, 95% stratified-bootstrap interval (strata = cells). "

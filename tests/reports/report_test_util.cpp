@@ -1,5 +1,6 @@
 #include "tests/reports/report_test_util.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -61,6 +62,11 @@ void write_run(const fs::path& sweep, const FakeRun& run, const std::string& has
   for (const BcPoint& p : run.bc) bc.push_back({{"step", p.step}, {"prior", p.prior}, {"online", p.online}});
   nlohmann::json losses = nlohmann::json::array();
   for (const CurvePoint& p : run.q) losses.push_back({{"step", p.step}, {"q_mean", p.value}, {"actor", -p.value}, {"critic", 0.1}});
+  for (const CurvePoint& p : run.temperature) {
+    const auto at = std::find_if(losses.begin(), losses.end(), [&](const nlohmann::json& l) { return l["step"] == p.step; });
+    if (at != losses.end()) (*at)["temperature"] = p.value;
+    else losses.push_back({{"step", p.step}, {"temperature", p.value}});
+  }
   const bool ok = run.status == "ok";
   const nlohmann::json record = {
       {"schema", "rapid.run/1"},

@@ -27,6 +27,7 @@ struct FakeRun {
   std::vector<CurvePoint> eval;         // target_step → return_mean
   std::vector<BcPoint> bc;
   std::vector<CurvePoint> q;            // step → the critic's q_mean (losses)
+  std::vector<CurvePoint> temperature;  // step → a learned temperature (losses; at q's steps or its own)
   double collision_rate = 0.0;          // at every evaluation
   double epsilon = -0.5;
   double wall_s = -1.0;                 // timing.wall_s; negative: the record says no time

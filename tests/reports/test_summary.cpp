@@ -202,6 +202,41 @@ TEST_F(SummaryTest, EndOfTrainingShowsCollisionsQAndImitationErrors) {
   EXPECT_DOUBLE_EQ((*cell)["collision_curve"]["mean"].back().get<double>(), 0.3);
 }
 
+// RLPD (SAC)'s learned temperature: its course by quarters of training in table.md and its curve in
+// summary.json; a method that learns none has neither (no section at all without one).
+TEST_F(SummaryTest, TheLearnedTemperatureIsShownByQuartersOfTraining) {
+  report_test::write_grid(sweep, report_test::make_grid("unit", {"pendulum"}, {"initial"}, {"rapid-rl", "rlpd-sac"}, {0, 1}));
+  for (std::uint64_t seed : {0u, 1u}) {
+    FakeRun r = report_test::pendulum_run("initial", "rlpd-sac", seed, 10.0);
+    const double s0 = seed;  // seed 1 ends higher: the means are 0.5, 0.3, 0.15, 0.125
+    r.temperature = {{250, 0.5}, {500, 0.3}, {750, 0.1 + 0.1 * s0}, {1000, 0.1 + 0.05 * s0}};
+    report_test::write_run(sweep, r);
+    report_test::write_run(sweep, report_test::pendulum_run("initial", "rapid-rl", seed, 10.0));
+  }
+  SummaryOptions options;
+  options.claims = false;
+  const Summary s = build_summary(sweep, options);
+  const std::string md = table_markdown(s);
+  const std::size_t from = md.find("## The learned temperature");
+  ASSERT_NE(from, std::string::npos) << md;
+  const std::string section = md.substr(from, md.find("\n## ", from + 1) - from);
+  EXPECT_NE(section.find("| Pendulum | Initial | RLPD (SAC) | 0.500 ± 0.000 | 0.300 ± 0.000 | 0.150 ± 0.050 | 0.125 ± 0.025 | 0.83 |"),
+            std::string::npos)
+      << section;
+  EXPECT_EQ(section.find("RAPID-RL"), std::string::npos) << section;  // it learns no temperature
+  const nlohmann::json j = summary_to_json(s);
+  for (const nlohmann::json& c : j["cells"]) {
+    if (c["algo"] == "rlpd-sac") {
+      EXPECT_EQ(c["temperature_curve"]["mean"].back().get<double>(), 0.125) << c.dump();
+    } else {
+      EXPECT_FALSE(c.contains("temperature_curve")) << c.dump();
+    }
+  }
+  std::filesystem::remove_all(sweep / "jobs");
+  report_test::write_run(sweep, report_test::pendulum_run("initial", "rapid-rl", 0, 10.0));
+  EXPECT_EQ(table_markdown(build_summary(sweep, options)).find("## The learned temperature"), std::string::npos);
+}
+
 // What a run cost, from its record's timing: per scenario and algorithm the median over every cell's
 // ok seeds with the fastest and slowest, then the ok runs summed; a failed run and a record without a
 // time do not count.
