@@ -3,6 +3,9 @@
 // before issue #42), at no new compute: what each would have spent and decided, beside what the
 // folder's own run did. Reads a sweep folder's records, or a committed reports folder's
 // summary.json and runs.csv (results/*, whose records are not in git). Writes FOLDER/decide-replay.md.
+// With --run-times SWEEP it also prices every rule's runs per scenario at SWEEP's measured run times,
+// with and without the evaluation budget (issue #42's cost of a decided answer).
+#include <algorithm>
 #include <iostream>
 
 #include "core/atomic_file.hpp"
@@ -11,6 +14,7 @@
 #include "experiments/cli/errors.hpp"
 #include "experiments/report/decide_replay.hpp"
 #include "experiments/report/decisions.hpp"
+#include "experiments/report/eval_budget.hpp"
 #include "experiments/report/report_folder.hpp"
 #include "experiments/report/summarize.hpp"
 #include "experiments/sweep/state.hpp"
@@ -24,7 +28,27 @@ namespace fs = std::filesystem;
 struct ReplayOptions {
   std::string folder;
   double futility = 0.10;
+  std::string run_times;  // a sweep on the same protocol whose records price the runs per scenario
 };
+
+// Per scenario, a run's cost at the sweep's evaluation and the evaluation budget's gain
+// (report/eval_budget.hpp), from `sweep`'s records.
+// Refuses a sweep of another profile (other budgets and evaluation: its run times price nothing here).
+std::map<std::string, ScenarioRunCost> measured_run_costs(const fs::path& sweep, const std::string& profile) {
+  std::map<std::string, ScenarioRunCost> costs;
+  try {
+    const std::string its = read_json_input((sweep / sweep_files::kGrid).string()).value("profile", "");
+    if (its != profile)
+      throw std::invalid_argument(sweep.string() + " ran the '" + its + "' profile, the folder '" + profile + "'");
+    for (const EvalBudget& b : eval_budgets(read_eval_runs(sweep)))
+      costs[b.scenario] = {.run_s = b.cost_now,
+                           .recommended_s = b.cost_recommended,
+                           .precision_gain = std::min(b.final_saving, b.area_saving)};
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("--run-times: " + std::string(e.what()));
+  }
+  return costs;
+}
 
 int replay_decide_command(const ReplayOptions& o) {
   const fs::path dir = o.folder;
@@ -72,9 +96,21 @@ int replay_decide_command(const ReplayOptions& o) {
 
   report.name = full.grid.name;
   report.initial_seeds = static_cast<int>(initial.size());
-  for (const CellSummary& c : full.cells) report.cells += c.n_ok > 0;
+  for (const CellSummary& c : full.cells)
+    if (c.n_ok > 0) {
+      ++report.cells;
+      report.fixed_runs_by_scenario[c.scenario] += settings.max_seeds;
+    }
   report.seconds_per_run = runs > 0 ? run_s / runs : 0.0;
   report.published_looks = plan.value("looks", nlohmann::json::array());
+  if (!o.run_times.empty()) {
+    report.run_times_from = fs::path(o.run_times).lexically_normal().string();
+    report.costs = measured_run_costs(o.run_times, full.grid.profile);
+    for (const auto& [scenario, runs] : report.fixed_runs_by_scenario)
+      if (!report.costs.count(scenario))
+        throw UsageError("--run-times: " + report.run_times_from + " has no records of scenario '" + scenario +
+                         "' to price its runs with");
+  }
   for (RuleReplay* rule : {&report.freeze, &report.redecide}) {
     rule->settings = settings;
     rule->settings.rule = rule == &report.freeze ? LookRule::kFreeze : LookRule::kRedecide;
@@ -83,7 +119,9 @@ int replay_decide_command(const ReplayOptions& o) {
     for (const CellSummary& c : full.cells) {
       if (c.n_ok == 0) continue;
       const auto has = rule->replay.state.seeds_of.find(c.key());
-      rule->runs += has == rule->replay.state.seeds_of.end() ? report.initial_seeds : has->second;
+      const long given = has == rule->replay.state.seeds_of.end() ? report.initial_seeds : has->second;
+      rule->runs += given;
+      rule->runs_by_scenario[c.scenario] += given;
     }
   }
   const std::string md = decide_replay_markdown(report);
@@ -101,6 +139,9 @@ Command add_replay_decide_command(CLI::App& parent) {
                        "futility, and the rule before it): runs spent and verdicts, nothing run");
   sub->add_option("folder", o->folder, "a --decide sweep folder, or its committed reports folder")->required();
   sub->add_option("--futility", o->futility, "as for rapid sweep --decide (default 0.1)")->check(CLI::Range(0.0, 0.99));
+  sub->add_option("--run-times", o->run_times,
+                  "a sweep on the folder's protocol whose records price each scenario's runs, at the folder's "
+                  "evaluation and with rapid eval-budget's recommendation (core-hours and shares of the fixed design)");
   return {sub, [o] { return replay_decide_command(*o); }};
 }
 

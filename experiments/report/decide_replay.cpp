@@ -119,6 +119,53 @@ Summary summary_of_reports(const ReportFolder& folder) {
 }
 
 
+PricedRuns price_runs(const std::map<std::string, long>& runs, const std::map<std::string, ScenarioRunCost>& costs) {
+  PricedRuns p;
+  for (const auto& [scenario, n] : runs) {
+    const auto cost = costs.find(scenario);
+    if (cost == costs.end()) throw std::invalid_argument("no run time measured for scenario '" + scenario + "'");
+    p.hours += n * cost->second.run_s / 3600.0;
+    p.hours_with_eval_budget += n * cost->second.run_s / cost->second.precision_gain / 3600.0;
+  }
+  return p;
+}
+
+namespace {
+
+// The pricing paragraph and its columns when `--run-times` gave measured costs per scenario.
+void write_priced(std::ostringstream& md, const DecideReplayReport& r) {
+  const PricedRuns fixed_design = price_runs(r.fixed_runs_by_scenario, r.costs);
+  md << "\n## Priced at measured run times\n\nEach scenario's runs priced at the run time measured in `"
+     << r.run_times_from
+     << "` (its records, `rapid eval-budget`'s cost model: training plus each evaluation episode), at this "
+        "folder's evaluation and with the evaluation budget's recommendation at equal precision (docs/performance.md "
+        "§The evaluation budget: a run there is cheaper but less precise, so each run counts its cost ÷ the "
+        "precision a core-second gains, the smaller of the final return's and the curve area's gain).\n\n"
+        "| scenario | run s | recommended run s | precision per core-second | fixed design runs | freeze runs |\n"
+        "|---|---:|---:|---:|---:|---:|\n";
+  for (const auto& [scenario, fixed_runs] : r.fixed_runs_by_scenario) {
+    const ScenarioRunCost& cost = r.costs.at(scenario);
+    const auto freeze_runs = r.freeze.runs_by_scenario.find(scenario);
+    md << "| " << scenario << " | " << fixed(cost.run_s, 1) << " | " << fixed(cost.recommended_s, 1) << " | × "
+       << fixed(cost.precision_gain, 2) << " | " << fixed_runs << " | "
+       << (freeze_runs == r.freeze.runs_by_scenario.end() ? 0L : freeze_runs->second) << " |\n";
+  }
+  md << "\n| rule | core-hours at the folder's evaluation | share | core-hours with the evaluation budget | share |\n"
+        "|---|---:|---:|---:|---:|\n";
+  const auto row = [&](const std::string& name, const std::map<std::string, long>& runs) {
+    const PricedRuns p = price_runs(runs, r.costs);
+    md << "| " << name << " | " << fixed(p.hours, 1) << " | " << fixed(100.0 * p.hours / fixed_design.hours, 0) << " % | "
+       << fixed(p.hours_with_eval_budget, 1) << " | " << fixed(100.0 * p.hours_with_eval_budget / fixed_design.hours, 0)
+       << " % |\n";
+  };
+  row("freeze", r.freeze.runs_by_scenario);
+  row("redecide", r.redecide.runs_by_scenario);
+  row("fixed, " + std::to_string(r.freeze.settings.max_seeds) + " seeds", r.fixed_runs_by_scenario);
+  md << "\nShares are of the fixed design's core-hours at the folder's evaluation.\n";
+}
+
+}  // namespace
+
 std::string decide_replay_markdown(const DecideReplayReport& r) {
   std::ostringstream md;
   const long fixed_max = static_cast<long>(r.cells) * r.freeze.settings.max_seeds;
@@ -148,6 +195,7 @@ std::string decide_replay_markdown(const DecideReplayReport& r) {
   if (r.published_looks.is_array() && !r.published_looks.empty())
     md << "| the folder's own run (decide.json) | " << r.published_looks.size() << " | | | | "
        << look_verdicts_text(r.published_looks.back()) << " |\n";
+  if (!r.costs.empty()) write_priced(md, r);
   for (const RuleReplay* rule : {&r.freeze, &r.redecide}) {
     md << "\n## " << look_rule_name(rule->settings.rule) << ": look by look\n\n| look | verdicts | then |\n|---|---|---|\n";
     for (const nlohmann::json& look : rule->replay.looks) {

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -41,12 +43,34 @@ struct RuleReplay {
   DecideSettings settings;
   LookReplay replay;
   long runs = 0;  // seeds given, summed over the cells (the grid's own included)
+  std::map<std::string, long> runs_by_scenario;  // the same, per scenario
 };
+
+// What a run of a scenario costs, measured in another sweep of the same protocol (`--run-times
+// SWEEP`, from its records through report/eval_budget.hpp): at the protocol's evaluation, and how
+// many times more precision a core-second buys at the evaluation budget's recommendation (the
+// smaller of the final return's and the curve area's gain, so both keep their precision).
+struct ScenarioRunCost {
+  double run_s = 0;            // per run, at the protocol's evaluation
+  double recommended_s = 0;    // per run, at the recommendation (fewer episodes: less precise runs)
+  double precision_gain = 1;   // run_s·variance now ÷ recommended_s·variance there, ≥ 0
+};
+
+// Core-hours of `runs` (per scenario) at the protocol's evaluation, and with the evaluation budget at
+// equal precision (each run's cost ÷ its precision gain: more, cheaper runs for the same variance of
+// a cell mean). Throws std::invalid_argument naming a scenario `costs` lacks.
+struct PricedRuns {
+  double hours = 0, hours_with_eval_budget = 0;
+};
+PricedRuns price_runs(const std::map<std::string, long>& runs, const std::map<std::string, ScenarioRunCost>& costs);
 struct DecideReplayReport {
   std::string name;       // the grid's
   bool from_records = false;  // false: from a committed reports folder (no BC losses)
   int initial_seeds = 0, cells = 0;
   double seconds_per_run = 0;  // the folder's mean run time (summary provenance), for core-hours
+  std::map<std::string, long> fixed_runs_by_scenario;  // the fixed design's: cells × max seeds
+  std::string run_times_from;  // the sweep `costs` were measured in; empty: none given
+  std::map<std::string, ScenarioRunCost> costs;
   nlohmann::json published_looks;  // decide.json's looks as the folder's own run made them
   RuleReplay redecide, freeze;
 };

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/rng.hpp"
+#include "experiments/report/decide_replay.hpp"
 #include "experiments/report/eval_budget.hpp"
 
 namespace rapid {
@@ -74,6 +75,24 @@ TEST(EvalBudget, RunsOfDifferentProtocolsAreRefused) {
   EvalRun b = a;
   b.curve_episodes = 5;
   EXPECT_THROW(eval_budgets({a, b}), std::invalid_argument);
+}
+
+// `rapid replay-decide --run-times`: runs priced per scenario, and with the evaluation budget at
+// equal precision each run counts its cost ÷ the precision a core-second gains (×2 precision per
+// core-second: half the core-hours for the same variance of a cell mean).
+TEST(EvalBudget, PricesRunsPerScenarioAndAtEqualPrecision) {
+  const std::map<std::string, ScenarioRunCost> costs{{"a", {.run_s = 3600, .recommended_s = 1800, .precision_gain = 2.0}},
+                                                     {"b", {.run_s = 360, .recommended_s = 360, .precision_gain = 1.0}}};
+  const PricedRuns p = price_runs({{"a", 10}, {"b", 20}}, costs);
+  EXPECT_DOUBLE_EQ(p.hours, 10.0 + 2.0);
+  EXPECT_DOUBLE_EQ(p.hours_with_eval_budget, 5.0 + 2.0);
+  EXPECT_DOUBLE_EQ(price_runs({}, costs).hours, 0.0);
+  try {
+    price_runs({{"c", 1}}, costs);
+    ADD_FAILURE() << "a scenario without a cost was priced";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "no run time measured for scenario 'c'");
+  }
 }
 
 }  // namespace

@@ -85,6 +85,26 @@ TEST(Decide, AddsBlocksOfSeedsToUndecidedCellsAndResumesWithoutRerunning) {
       << replay.output;
   EXPECT_NE(replay.output.find("| redecide | "), std::string::npos) << replay.output;
   EXPECT_TRUE(fs::exists(sweep / "decide-replay.md"));
+  // Priced at another sweep's measured run times (same scenario, a final evaluation to measure the
+  // episodes' cost from): every rule's runs per scenario, the fixed design at 100 %.
+  const fs::path timed = dir.path() / "timed";
+  nlohmann::json t = g;
+  t["seeds"] = {0, 1, 2};
+  t["config"]["final_eval_episodes"] = 6;
+  write_json(dir.path() / "timed.json", t);
+  ASSERT_EQ(run_rapid("sweep " + (dir.path() / "timed.json").string() + " --jobs 2 --no-summary --out " + timed.string())
+                .exit_code,
+            0);
+  const Result priced = run_rapid("replay-decide " + sweep.string() + " --futility 0 --run-times " + timed.string());
+  ASSERT_EQ(priced.exit_code, 0) << priced.output;
+  EXPECT_NE(priced.output.find("## Priced at measured run times"), std::string::npos) << priced.output;
+  EXPECT_NE(priced.output.find(" | 8 | " + std::to_string(runs) + " |\n"), std::string::npos) << priced.output;
+  EXPECT_NE(priced.output.find("| fixed, 4 seeds | "), std::string::npos) << priced.output;
+  const std::size_t fixed_row = priced.output.rfind("| fixed, 4 seeds | ");
+  EXPECT_NE(priced.output.find(" | 100 % | ", fixed_row), std::string::npos) << priced.output;
+  const Result unpriced = run_rapid("replay-decide " + sweep.string() + " --run-times " + dir.path().string());
+  EXPECT_EQ(unpriced.exit_code, 2) << unpriced.output;
+  EXPECT_NE(unpriced.output.find("--run-times: "), std::string::npos) << unpriced.output;
   const Result no_plan = run_rapid("replay-decide " + dir.path().string());
   EXPECT_EQ(no_plan.exit_code, 2);
   EXPECT_NE(no_plan.output.find("FOLDER: "), std::string::npos) << no_plan.output;
