@@ -18,9 +18,8 @@ struct CliOutput {
   std::string text;
 };
 
-// Runs `rapid ARGS` through the shell; stderr is folded into the text when `with_stderr` is set.
-inline CliOutput rapid_cli(const std::string& args, bool with_stderr = false) {
-  const std::string command = std::string(RAPID_BIN) + " " + args + (with_stderr ? " 2>&1" : " 2>/dev/null");
+// Runs COMMAND through the shell and collects its stdout (and whatever the command redirects there).
+inline CliOutput shell_output(const std::string& command) {
   CliOutput out;
   FILE* pipe = ::popen(command.c_str(), "r");
   if (!pipe) return out;
@@ -29,6 +28,11 @@ inline CliOutput rapid_cli(const std::string& args, bool with_stderr = false) {
   const int status = ::pclose(pipe);
   out.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return out;
+}
+
+// Runs `rapid ARGS` through the shell; stderr is folded into the text when `with_stderr` is set.
+inline CliOutput rapid_cli(const std::string& args, bool with_stderr = false) {
+  return shell_output(std::string(RAPID_BIN) + " " + args + (with_stderr ? " 2>&1" : " 2>/dev/null"));
 }
 
 }  // namespace rapid::test

@@ -1,0 +1,113 @@
+// scripts/campaign-records (docs/sweeps.md, "A campaign that outlives its machine"): the records a
+// finished part of a sweep left, saved into an archive and restored into a fresh folder on another
+// machine, make the same sweep command run nothing it already ran; records of another code
+// revision, or a restore over files that differ, are refused with exit 2 and nothing written.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "tests/sweep/sweep_test_util.hpp"
+#include "tests/cli_runner.hpp"
+#include "tests/datasets/dataset_fixtures.hpp"
+
+namespace rapid {
+namespace {
+
+using namespace sweep_test;
+using nlohmann::json;
+
+Result run_script(const std::string& args) {
+  const test::CliOutput out =
+      test::shell_output(std::string(RAPID_SOURCE_DIR) + "/scripts/campaign-records " + args + " 2>&1");
+  return Result{out.exit_code, out.text};
+}
+
+class CampaignRecords : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    write_json(grid_path_, pendulum_grid("campaign", {"rapid-rl", "ddpg"}, {0, 1}, 1500));
+    provide_datasets(first_, grid_path_);
+    const Result r = sweep(first_);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    revision_ = read_json(first_ / "jobs/pendulum/none/ddpg/seed0/record.json")["provenance"]["code_revision"];
+  }
+  Result sweep(const fs::path& folder) {
+    return run_rapid("sweep " + grid_path_.string() + " --jobs 2 --out " + folder.string());
+  }
+
+  testing::ScratchDir dir_;
+  fs::path grid_path_ = dir_.path() / "campaign.json";
+  fs::path first_ = dir_.path() / "first";    // the machine that was replaced
+  fs::path second_ = dir_.path() / "second";  // the next one
+  fs::path archive_ = dir_.path() / "saved/campaign.tar.xz";
+  std::string revision_;
+};
+
+TEST_F(CampaignRecords, RestoredRecordsAreNotRunAgain) {
+  // One run's record is lost before the save (it was still running): it must run again.
+  fs::remove(first_ / "jobs/pendulum/initial/rapid-rl/seed1/record.json");
+  const Result saved = run_script("save " + first_.string() + " " + archive_.string() + " --revision " + revision_);
+  ASSERT_EQ(saved.exit_code, 0) << saved.output;
+  EXPECT_NE(saved.output.find("saved 3 records"), std::string::npos) << saved.output;
+
+  provide_datasets(second_, grid_path_);  // what --reuse-datasets rebuilds on the new machine
+  const Result restored = run_script("restore " + archive_.string() + " " + second_.string());
+  ASSERT_EQ(restored.exit_code, 0) << restored.output;
+  const Result resumed = sweep(second_);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_EQ(jobs_ran(second_), std::vector<std::string>{"pendulum/initial/rapid-rl/seed1"});
+
+  // The sweep finished on the new machine holds what it would have held on the old one.
+  ASSERT_EQ(sweep(first_).exit_code, 0);
+  EXPECT_EQ(comparable_records(second_), comparable_records(first_));
+}
+
+TEST_F(CampaignRecords, AFailedRunIsNotSaved) {
+  const fs::path failed = first_ / "jobs/pendulum/none/ddpg/seed1/record.json";
+  json r = read_json(failed);
+  r["status"] = "diverged";
+  write_json(failed, r);
+  const Result saved = run_script("save " + first_.string() + " " + archive_.string());
+  ASSERT_EQ(saved.exit_code, 0) << saved.output;
+  EXPECT_NE(saved.output.find("saved 3 records"), std::string::npos) << saved.output;
+}
+
+TEST_F(CampaignRecords, RecordsOfAnotherRevisionAreRefused) {
+  const fs::path other = first_ / "jobs/pendulum/none/ddpg/seed1/record.json";
+  json r = read_json(other);
+  r["provenance"]["code_revision"] = "0000000";
+  write_json(other, r);
+
+  Result saved = run_script("save " + first_.string() + " " + archive_.string());
+  EXPECT_EQ(saved.exit_code, 2);
+  EXPECT_NE(saved.output.find("records of 2 revisions"), std::string::npos) << saved.output;
+  EXPECT_FALSE(fs::exists(archive_));
+
+  saved = run_script("save " + first_.string() + " " + archive_.string() + " --revision " + revision_);
+  EXPECT_EQ(saved.exit_code, 2);
+  EXPECT_NE(saved.output.find("revision 0000000 are not of --revision " + revision_), std::string::npos) << saved.output;
+  EXPECT_FALSE(fs::exists(archive_));
+}
+
+TEST_F(CampaignRecords, RestoreNeverOverwritesAFileThatDiffers) {
+  ASSERT_EQ(run_script("save " + first_.string() + " " + archive_.string()).exit_code, 0);
+  const Result wrong = run_script("restore " + archive_.string() + " " + second_.string() + " --revision 0000000");
+  EXPECT_EQ(wrong.exit_code, 2) << wrong.output;
+  EXPECT_FALSE(fs::exists(second_));
+
+  provide_datasets(second_, grid_path_);
+  ASSERT_EQ(sweep(second_).exit_code, 0);
+  const fs::path changed = second_ / "jobs/pendulum/none/ddpg/seed0/record.json";
+  json r = read_json(changed);
+  r["final"]["return_mean"] = 1.0;
+  write_json(changed, r);
+  const auto before = record_identities(second_);
+  const Result refused = run_script("restore " + archive_.string() + " " + second_.string());
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.output.find("exists and differs"), std::string::npos) << refused.output;
+  EXPECT_EQ(std::count(refused.output.begin(), refused.output.end(), '\n'), 1) << refused.output;
+  EXPECT_EQ(record_identities(second_), before);
+}
+
+}  // namespace
+}  // namespace rapid
