@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <cstdlib>
+
 #include "tests/datasets/dataset_fixtures.hpp"
 #include "tests/sweep/sweep_test_util.hpp"
 
@@ -73,6 +75,21 @@ TEST(TuneCli, FindsThePlantedSettingAndResumesAfterAKill) {
     (*t).erase("wall_s");
     (*t)["results"]["pendulum"]["ddpg"].erase("wall_s");
   }
+  EXPECT_EQ(a, b);
+
+  // The folder lost with its machine, its records saved by scripts/campaign-records and restored
+  // on the next: the same command runs no trial again and decides the same.
+  const fs::path archive = dir.path() / "tune.tar.xz", moved = dir.path() / "moved";
+  const std::string script = std::string(RAPID_SOURCE_DIR) + "/scripts/campaign-records ";
+  ASSERT_EQ(std::system((script + "save " + out.string() + " " + archive.string() + " >/dev/null").c_str()), 0);
+  ASSERT_EQ(std::system((script + "restore " + archive.string() + " " + moved.string() + " >/dev/null").c_str()), 0);
+  const Result restored = run_rapid("tune " + in.grid.string() + " --space " + in.space.string() + " --jobs 2 --out " + moved.string());
+  ASSERT_EQ(restored.exit_code, 0) << restored.output;
+  for (const auto& entry : fs::recursive_directory_iterator(moved))
+    EXPECT_NE(entry.path().filename(), "log.txt") << entry.path() << " ran again";
+  a = read_json(moved / "tuned.json");
+  a.erase("wall_s");
+  a["results"]["pendulum"]["ddpg"].erase("wall_s");
   EXPECT_EQ(a, b);
 }
 
