@@ -23,6 +23,7 @@
 #include "core/rng.hpp"
 #include "core/statistics.hpp"
 #include "envs/env.hpp"
+#include "experiments/run/config_keys.hpp"
 #include "experiments/run/external_record.hpp"
 #include "experiments/run/external_run.hpp"
 #include "experiments/run/run_config.hpp"
@@ -430,6 +431,28 @@ class Box:
       py::arg("name"),
       "A harness algorithm's registry row: uses_prior, the method keys it reads and its recipe (the published values "
       "a run takes where its config leaves the key out), so a reimplementation reads them from here.");
+  m.def(
+      "neutral_values",
+      [] {
+        // The value each of the learner's optional keys holds when neither a config nor a recipe
+        // gives it (a method key without one: None, every config must give it).
+        nlohmann::json out = nlohmann::json::object();
+        for (const MethodKey* k : method_keys())
+          out[k->name] = !k->neutral                        ? nlohmann::json(nullptr)
+                         : k->type == MethodKey::kInteger ? nlohmann::json(static_cast<long long>(*k->neutral))
+                                                          : nlohmann::json(*k->neutral);
+        for (const ConfigKey& k : config_keys()) {
+          if (k.part != ConfigPart::kAgent || !k.optional() || out.contains(k.name)) continue;
+          RunConfig config;
+          k.set_neutral(config);
+          out[k.name] = k.write(config);
+        }
+        return py::module_::import("json").attr("loads")(out.dump());
+      },
+      "The learner's optional keys (the backbone's switches and every method key) with the value a run takes "
+      "where neither its config nor its algorithm's recipe gives one: a value that changes nothing (bc_q_alpha 0) "
+      "or, outside the key's bounds, one that says it was not given (init_temperature 0); None for a key every "
+      "config must give.");
   m.def(
       "config",
       [](const std::string& scenario, const std::string& profile, const py::object& overrides) {

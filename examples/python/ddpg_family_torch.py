@@ -19,13 +19,13 @@ from torch import nn
 
 import rapid_harness as rh
 
-# Keys beyond the shared ones and the value a run takes when neither the grid's `keys` nor the config
-# give one: the backbone's neutral values (algos/actor_critic.hpp, experiments/run/config_keys.cpp),
-# overridden by the method's recipe. A method reads only its registry row's keys plus the shared
-# critic_layer_norm and init; the rest stay neutral. The rows and recipes (the published values,
-# e.g. td3-bc's) come from the harness itself, rh.algorithm(name), so they cannot drift from the C++.
-NEUTRAL = {"critic_layer_norm": True, "init": "ddpg", "critic_ensemble": 1, "critic_subset": 1, "policy_delay": 1,
-           "target_noise": 0.0, "target_noise_clip": 0.0, "bc_q_alpha": 0.0, "epsilon": None}
+# Keys beyond the shared ones: the backbone's switches and the method keys this file implements. A
+# method reads only its registry row's keys plus the shared critic_layer_norm and init; each key it
+# does not read holds the backbone's neutral value. The rows, recipes (the published values, e.g.
+# td3-bc's) and neutral values come from the harness itself, rh.algorithm(name) and
+# rh.neutral_values(), so they cannot drift from the C++.
+IMPLEMENTED = ("critic_layer_norm", "init", "critic_ensemble", "critic_subset", "policy_delay", "target_noise",
+               "target_noise_clip", "bc_q_alpha", "epsilon")
 METHODS = ("ddpg", "rapid-rl", "td3-bc")
 
 
@@ -47,8 +47,9 @@ def method_settings(method, config, own):
     reads = set(row["keys"]) | {"critic_layer_norm", "init"}
     if set(own) - reads:
         fail(f"--method {method} reads no key {', '.join(sorted(set(own) - reads))}; reads {', '.join(sorted(reads))}")
-    return {key: own.get(key, config.get(key, row["recipe"].get(key, neutral))) if key in reads else neutral
-            for key, neutral in NEUTRAL.items()}
+    neutral = rh.neutral_values()
+    return {key: own.get(key, config.get(key, row["recipe"].get(key, neutral[key]))) if key in reads else neutral[key]
+            for key in IMPLEMENTED}
 
 
 def mlp(inputs, hidden, outputs, init, layer_norm=False, tanh=False):

@@ -277,6 +277,20 @@ class Algorithms(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "unknown algorithm 'sac'"):
             rh.algorithm("sac")
 
+    def test_the_neutral_values_are_the_backbones(self):
+        neutral = rh.neutral_values()
+        # A run that sets none of these is the paper's DDPG backbone: one LayerNorm critic, its own
+        # initialisation, no smoothing, no delay, no Q-weighted imitation (algos/actor_critic.hpp).
+        self.assertEqual({k: neutral[k] for k in ("critic_layer_norm", "init", "critic_ensemble", "critic_subset",
+                                                  "policy_delay", "target_noise", "bc_q_alpha")},
+                         {"critic_layer_norm": True, "init": "ddpg", "critic_ensemble": 1, "critic_subset": 1,
+                          "policy_delay": 1, "target_noise": 0.0, "bc_q_alpha": 0.0})
+        self.assertIsInstance(neutral["critic_ensemble"], int)
+        self.assertIsNone(neutral["epsilon"])  # RAPID-RL's ε has no neutral value: a config must give it
+        for name in ("rapid-rl", "td3-bc", "rlpd-sac", "q-filter"):
+            for key in rh.algorithm(name)["keys"]:
+                self.assertIn(key, neutral)
+
 
 class RunRecords(unittest.TestCase):
     """A Python method's record is a `rapid run` record: the same schema, cell, resolved config and
