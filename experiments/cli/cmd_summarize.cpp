@@ -13,7 +13,7 @@
 #include "experiments/report/report_page.hpp"
 #include "experiments/report/summarize.hpp"
 #include "experiments/report/write_reports.hpp"
-#include "experiments/sweep/attempt.hpp"  // signal_name
+#include "core/signal_name.hpp"
 
 namespace rapid {
 

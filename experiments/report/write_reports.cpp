@@ -10,7 +10,7 @@
 #include "experiments/report/paper_ranking.hpp"
 #include "experiments/report/plot.hpp"
 #include "experiments/report/tables.hpp"
-#include "experiments/sweep/attempt.hpp"  // signal_name
+#include "core/signal_name.hpp"
 
 namespace rapid {
 

@@ -1,19 +1,14 @@
 #include "experiments/sweep/attempt.hpp"
 
-#include <cstring>
 #include <fstream>
 
+#include "core/signal_name.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/sweep/cell_record.hpp"
 
 namespace rapid {
 
 namespace fs = std::filesystem;
-
-std::string signal_name(int sig) {
-  const char* abbrev = sigabbrev_np(sig);
-  return abbrev ? std::string("SIG") + abbrev : "signal " + std::to_string(sig);
-}
 
 void discard_progress(const SweepFolder& folder, const SweepJob& job) {
   std::error_code ec;

@@ -41,7 +41,4 @@ bool worth_retrying(const SweepFolder& folder, const AttemptVerdict& verdict, in
 void record_outcome(const SweepFolder& folder, const SweepJob& job, const AttemptVerdict& verdict, int attempts,
                     int exit_code, int signal);
 
-// "SIGTERM", "SIGKILL", …
-std::string signal_name(int sig);
-
 }  // namespace rapid

@@ -10,6 +10,7 @@
 #include "core/clock.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/run/run_config.hpp"
+#include "core/signal_name.hpp"
 #include "experiments/sweep/attempt.hpp"
 #include "experiments/sweep/eta.hpp"
 #include "experiments/sweep/process_pool.hpp"

@@ -5,6 +5,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/clock.hpp"
+#include "core/signal_name.hpp"
 #include "experiments/sweep/attempt.hpp"
 #include "experiments/sweep/lock.hpp"
 #include "experiments/sweep/process_pool.hpp"
