@@ -8,26 +8,25 @@
 
 namespace rapid {
 
-void load_grid_scenarios(const std::string& grid_path) {
-  if (grid_path.empty()) return;
+std::optional<Grid> load_cli_grid(const std::string& grid_path) {
+  if (grid_path.empty()) return std::nullopt;
   try {
-    load_grid(grid_path);
+    return load_grid(grid_path);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
 }
 
 std::vector<ConfigLayer> cli_config_layers(const std::string& scenario, const std::string& profile,
-                                           const std::string& grid_path, const nlohmann::json& set_overrides,
+                                           const std::optional<Grid>& grid, const nlohmann::json& set_overrides,
                                            const std::string& algo) {
   std::string chosen = profile.empty() ? kDefaultProfile : profile;
   nlohmann::json overrides;
-  if (!grid_path.empty()) {
-    const Grid grid = load_grid(grid_path);
-    if (!profile.empty() && profile != grid.profile)
-      throw std::invalid_argument("--profile: '" + profile + "' differs from the grid's profile '" + grid.profile + "'");
-    chosen = grid.profile;
-    overrides = grid_overrides(grid, scenario, algo);
+  if (grid) {
+    if (!profile.empty() && profile != grid->profile)
+      throw std::invalid_argument("--profile: '" + profile + "' differs from the grid's profile '" + grid->profile + "'");
+    chosen = grid->profile;
+    overrides = grid_overrides(*grid, scenario, algo);
   }
   try {
     check_profile(chosen, scenario);
@@ -40,9 +39,9 @@ std::vector<ConfigLayer> cli_config_layers(const std::string& scenario, const st
   return layers;
 }
 
-nlohmann::json resolve_cli_config(const std::string& scenario, const std::string& profile, const std::string& grid_path,
-                                  const nlohmann::json& set_overrides) {
-  const nlohmann::json config = merge_layers(cli_config_layers(scenario, profile, grid_path, set_overrides), scenario);
+nlohmann::json resolve_cli_config(const std::string& scenario, const std::string& profile,
+                                  const std::optional<Grid>& grid, const nlohmann::json& set_overrides) {
+  const nlohmann::json config = merge_layers(cli_config_layers(scenario, profile, grid, set_overrides), scenario);
   run_config_from_json(config, scenario);  // validates the whole
   return config;
 }

@@ -151,7 +151,7 @@ struct BuildOptions {
 
 int run_build(const BuildOptions& o) {
   DatasetBuildSpec spec;
-  load_grid_scenarios(o.grid);
+  const std::optional<Grid> grid = load_cli_grid(o.grid);
   check_option("--scenario", [&] { make_env(o.scenario); });
   spec.scenario = o.scenario;
   spec.dir = o.dir;
@@ -161,7 +161,7 @@ int run_build(const BuildOptions& o) {
     nlohmann::json sets = nlohmann::json::object();
     for (const auto& s : o.sets) parse_set_option(s, sets);
     if (!o.grid.empty()) spec.reference = reference_for(load_grid(o.grid), o.scenario);
-    spec.config = resolve_cli_config(o.scenario, o.profile, o.grid, sets);
+    spec.config = resolve_cli_config(o.scenario, o.profile, grid, sets);
     const RunConfig config = run_config_from_json(spec.config, spec.scenario);
     check_dataset_sources(config, spec.reference.steps);
     check_scenario_runs(spec.scenario, config.scenario);

@@ -64,14 +64,14 @@ std::unique_ptr<FolderLock> lock_run_folder(const std::string& dir) {
 }
 
 // The profile the run's config starts from: the grid's, else --profile's, else the default.
-std::string run_profile(const RunOptions& o) {
-  if (!o.grid.empty()) return load_grid(o.grid).profile;
+std::string run_profile(const RunOptions& o, const std::optional<Grid>& grid) {
+  if (grid) return grid->profile;
   return o.profile.empty() ? kDefaultProfile : o.profile;
 }
 
 int run_command(const RunOptions& o) {
   JobSpec spec;
-  load_grid_scenarios(o.grid);
+  const std::optional<Grid> grid = load_cli_grid(o.grid);
   check_option("--scenario", [&] { make_env(o.scenario); });
   check_option("--algo", [&] { find_algorithm(o.algo); });
   check_option("--dataset", [&] { check_dataset_fits(o.algo, !o.dataset.empty()); });
@@ -89,7 +89,7 @@ int run_command(const RunOptions& o) {
   ResolvedConfig resolved;
   try {
     for (const auto& s : o.sets) parse_set_option(s, sets);
-    resolved = resolve_job_config(o.scenario, o.algo, cli_config_layers(o.scenario, o.profile, o.grid, sets, o.algo));
+    resolved = resolve_job_config(o.scenario, o.algo, cli_config_layers(o.scenario, o.profile, grid, sets, o.algo));
     check_scenario_runs(o.scenario, resolved.run.scenario);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
@@ -106,7 +106,7 @@ int run_command(const RunOptions& o) {
                         o.force);
   make_output_folder(o.out, "--out");
   const auto lock = lock_run_folder(o.out);
-  if (const ExternalMethod* method = find_external_method(o.algo)) return run_external_job(spec, *method, run_profile(o));
+  if (const ExternalMethod* method = find_external_method(o.algo)) return run_external_job(spec, *method, run_profile(o, grid));
   return run_job(spec);
 }
 
