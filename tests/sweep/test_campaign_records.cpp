@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
+#include <string>
 
 #include "tests/sweep/sweep_test_util.hpp"
 #include "tests/cli_runner.hpp"
@@ -50,9 +52,24 @@ TEST_F(CampaignRecords, RestoredRecordsAreNotRunAgain) {
   ASSERT_EQ(saved.exit_code, 0) << saved.output;
   EXPECT_NE(saved.output.find("saved 3 records"), std::string::npos) << saved.output;
 
-  provide_datasets(second_, grid_path_);  // what --reuse-datasets rebuilds on the new machine
+  // Restored into a fresh folder, as on a new machine: the sweep folder it makes is one that
+  // `rapid sweep --out` and `rapid status` accept as it is (no --force).
   const Result restored = run_script("restore " + archive_.string() + " " + second_.string());
   ASSERT_EQ(restored.exit_code, 0) << restored.output;
+  const Result restored_status = run_rapid("status " + second_.string());
+  ASSERT_EQ(restored_status.exit_code, 0) << restored_status.output;
+  provide_datasets(second_, grid_path_);  // what --reuse-datasets rebuilds on the new machine
+  const Result status = run_rapid("status --json " + second_.string());
+  ASSERT_EQ(status.exit_code, 0) << status.output;
+  std::map<std::string, std::string> run_states;  // the runs' states, the dataset jobs left out
+  const json listed = json::parse(status.output);
+  for (const auto& job : listed["jobs"])
+    if (job["job"].get<std::string>().find("/seed") != std::string::npos) run_states[job["job"]] = job["state"];
+  const std::map<std::string, std::string> expected = {{"pendulum/initial/rapid-rl/seed0", "ok"},
+                                                       {"pendulum/initial/rapid-rl/seed1", "pending"},
+                                                       {"pendulum/none/ddpg/seed0", "ok"},
+                                                       {"pendulum/none/ddpg/seed1", "ok"}};
+  EXPECT_EQ(run_states, expected) << status.output;
   const Result resumed = sweep(second_);
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
   EXPECT_EQ(jobs_ran(second_), std::vector<std::string>{"pendulum/initial/rapid-rl/seed1"});
