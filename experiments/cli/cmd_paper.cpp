@@ -5,7 +5,6 @@
 // also serves a committed folder whose records are not there.
 #include <iostream>
 
-#include "core/json_input.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
 #include "experiments/report/paper_ranking.hpp"
@@ -17,17 +16,7 @@ namespace {
 
 int paper_command(const std::string& dir) {
   const std::string path = (std::filesystem::path(dir) / "summary.json").string();
-  const nlohmann::json summary = check_option("REPORTS_DIR", [&] {
-    nlohmann::json j;
-    try {
-      j = read_json_input(path);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(path + " " + e.what());
-    }
-    if (!j.is_object() || j.value("schema", "") != kSummarySchema)
-      throw std::invalid_argument(path + " is not a " + std::string(kSummarySchema) + " document");
-    return j;
-  });
+  const nlohmann::json summary = check_option("REPORTS_DIR", [&] { return read_summary_document(dir); });
   const std::string md = check_option("REPORTS_DIR", [&] {
     try {
       return paper_agreement_markdown(summary);

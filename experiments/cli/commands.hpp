@@ -27,6 +27,7 @@ Command add_simulate_decide_command(CLI::App& parent);
 Command add_replay_decide_command(CLI::App& parent);
 Command add_eval_budget_command(CLI::App& parent);
 Command add_paper_command(CLI::App& parent);
+Command add_beside_command(CLI::App& parent);
 Command add_tune_command(CLI::App& parent);
 
 // `rapid sweep` of a parsed grid into `out` on local processes (`jobs` 0: one per core), starting

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
       rapid::add_replay_decide_command(app),
       rapid::add_eval_budget_command(app),
       rapid::add_paper_command(app),
+      rapid::add_beside_command(app),
       rapid::add_tune_command(app),
   };
 

@@ -241,5 +241,8 @@ struct Summary {
 
 // summary.json ("rapid.summary/1", see docs/reports.md).
 nlohmann::json summary_to_json(const Summary& summary);
+// A folder's summary.json as a document of this schema (`rapid paper`, `rapid beside`): throws
+// std::invalid_argument naming the file when it is missing, not JSON or of another schema.
+nlohmann::json read_summary_document(const std::filesystem::path& dir);
 
 }  // namespace rapid

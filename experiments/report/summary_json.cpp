@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "algos/registry.hpp"
+#include "core/json_input.hpp"
 #include "experiments/report/summary.hpp"
 #include "experiments/run/json_numbers.hpp"
 
@@ -204,6 +205,19 @@ nlohmann::json summary_to_json(const Summary& s) {
   if (s.baseline_decisions) j["baseline_decisions"] = decisions_json(*s.baseline_decisions);
   if (!s.adaptive_seeds.is_null()) j["adaptive_seeds"] = s.adaptive_seeds;  // absent outside --decide folders
   if (!s.provenance.empty()) j["provenance"] = s.provenance.to_json();  // absent without an ok record
+  return j;
+}
+
+nlohmann::json read_summary_document(const std::filesystem::path& dir) {
+  const std::string path = (dir / "summary.json").string();
+  nlohmann::json j;
+  try {
+    j = read_json_input(path);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(path + " " + e.what());
+  }
+  if (!j.is_object() || j.value("schema", "") != kSummarySchema)
+    throw std::invalid_argument(path + " is not a " + std::string(kSummarySchema) + " document");
   return j;
 }
 
