@@ -20,11 +20,6 @@ struct CellNumbers {
 
 CellNumbers from_summary(const CellSummary& c) { return {c.n_ok, c.n_expected, c.mean, c.std, c.mean_ci}; }
 
-std::optional<double> optional_number(const nlohmann::json& j, const char* key) {
-  if (!j.contains(key) || !j[key].is_number()) return std::nullopt;
-  return j[key].get<double>();
-}
-
 // Throws std::invalid_argument when the entry is not a baseline cell.
 CellNumbers from_baseline(const nlohmann::json& j) {
   if (!j.is_object() || !j.contains("n_ok") || !j["n_ok"].is_number_integer() || !j.contains("n_expected") ||

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "core/statistics.hpp"
+#include "experiments/run/json_numbers.hpp"
 
 namespace rapid {
 
@@ -56,7 +57,7 @@ std::vector<std::tuple<double, double, double>> bc_loss_points(const nlohmann::j
   std::vector<std::tuple<double, double, double>> out;
   if (!record.contains("bc_loss") || !record["bc_loss"].is_array()) return out;
   const auto number = [](const nlohmann::json& p, const char* key) {
-    return p.contains(key) && p[key].is_number() ? p[key].get<double>() : std::numeric_limits<double>::quiet_NaN();
+    return optional_number(p, key).value_or(std::numeric_limits<double>::quiet_NaN());  // a null loss: NaN
   };
   for (const nlohmann::json& point : record["bc_loss"])
     if (point.is_object() && point.contains("step") && point["step"].is_number())

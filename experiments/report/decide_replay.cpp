@@ -10,6 +10,7 @@
 #include "experiments/report/decisions.hpp"
 #include "experiments/report/format.hpp"
 #include "experiments/report/summarize.hpp"
+#include "experiments/run/json_numbers.hpp"
 
 namespace rapid {
 
@@ -96,14 +97,14 @@ Summary summary_of_reports(const ReportFolder& folder) {
     c.scenario = j.value("scenario", "");
     c.dataset = j.contains("dataset") && j["dataset"].is_string() ? j["dataset"].get<std::string>() : "";
     c.algo = j.value("algo", "");
-    const std::string key = cell_key(j, folder.sweep.grid);
+    const std::string key = summary_cell_key(j, folder.sweep.grid.axes);
     const auto curves = folder.seed_curves.find(key);
     std::vector<SeedResult> seeds;
     for (const nlohmann::json& seed : j.value("seeds", nlohmann::json::array())) {
       SeedResult r;
       r.seed = seed.value("seed", std::uint64_t{0});
       r.status = seed.value("status", "");
-      if (r.status == "ok" && seed.contains("final") && seed["final"].is_number()) r.final_return = seed["final"].get<double>();
+      if (r.status == "ok") r.final_return = optional_number(seed, "final");
       if (curves != folder.seed_curves.end())
         if (const auto curve = curves->second.find(r.seed); curve != curves->second.end()) r.eval = curve->second;
       ++c.statuses[r.status];

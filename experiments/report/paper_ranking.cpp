@@ -7,7 +7,8 @@
 #include <sstream>
 
 #include "experiments/report/format.hpp"
-#include "experiments/sweep/graph.hpp"
+#include "experiments/report/summary.hpp"
+#include "experiments/run/json_numbers.hpp"
 
 namespace rapid {
 
@@ -47,14 +48,10 @@ std::vector<OurRow> our_rows(const nlohmann::json& summary) {
   std::map<std::string, std::vector<double>> finals_of;  // cell key → ok finals
   for (const nlohmann::json& cell : summary.value("cells", nlohmann::json::array())) {
     if (cell.contains("axis") && !cell["axis"].empty()) continue;
-    const nlohmann::json dataset = cell.value("dataset", nlohmann::json());
-    const std::string key = cell.value("scenario", "") + "/" +
-                            (dataset.is_string() ? dataset.get<std::string>() : sweep_files::kNoDataset) + "/" +
-                            cell.value("algo", "");
-    std::vector<double>& finals = finals_of[key];
+    std::vector<double>& finals = finals_of[summary_cell_key(cell)];
     for (const nlohmann::json& seed : cell.value("seeds", nlohmann::json::array()))
-      if (seed.value("status", "") == "ok" && seed.contains("final") && seed["final"].is_number())
-        finals.push_back(seed["final"].get<double>());
+      if (const std::optional<double> f = optional_number(seed, "final"); f && seed.value("status", "") == "ok")
+        finals.push_back(*f);
   }
   std::vector<OurRow> rows;
   for (const nlohmann::json& row : summary.value("table", nlohmann::json::array())) {

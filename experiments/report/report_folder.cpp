@@ -21,12 +21,6 @@ nlohmann::json read_json_or_throw(const fs::path& path, const std::string& what)
   return *j;
 }
 
-// The cell part of a job id: "merge/initial/rapid-rl/epsilon=0.3/seed2" → "merge/initial/rapid-rl/epsilon=0.3".
-std::string job_cell_key(const SweepJob& job) {
-  const std::string id = job.id();
-  return id.substr(0, id.rfind("/seed"));
-}
-
 // A line of runs.csv split at its commas; a field in double quotes (an axis value that is a
 // list) keeps its commas (tables.cpp writes it so).
 std::vector<std::string> csv_fields(const std::string& line) {
@@ -71,7 +65,7 @@ void read_seed_curves(const fs::path& path, ReportFolder& folder) {
     const auto job = by_identity.find(identity);
     if (job == by_identity.end()) continue;
     try {
-      folder.seed_curves[job_cell_key(*job->second)][job->second->seed].emplace_back(std::stod(step), std::stod(ret));
+      folder.seed_curves[cell_key(*job->second)][job->second->seed].emplace_back(std::stod(step), std::stod(ret));
     } catch (const std::exception&) {
       throw std::invalid_argument(path.string() + ": not a number in line '" + line + "'");
     }
@@ -110,22 +104,12 @@ void read_animations(const fs::path& dir, ReportFolder& folder) {
       const std::string tail = "/" + job.dir + "/actor.ckpt";
       if (job.kind == JobKind::kCell && policy.size() >= tail.size() &&
           policy.compare(policy.size() - tail.size(), tail.size(), tail) == 0)
-        folder.seed_files[job_cell_key(job)][job.seed].animation = gif;
+        folder.seed_files[cell_key(job)][job.seed].animation = gif;
     }
   }
 }
 
 }  // namespace
-
-std::string cell_key(const nlohmann::json& cell, const Grid& grid) {
-  AxisPoint point;
-  const nlohmann::json axis = cell.value("axis", nlohmann::json::object());
-  for (const GridAxis& a : grid.axes)
-    if (axis.contains(a.key)) point.emplace_back(a.key, axis[a.key]);
-  const nlohmann::json dataset = cell.value("dataset", nlohmann::json());
-  return cell.value("scenario", "") + "/" + (dataset.is_string() ? dataset.get<std::string>() : sweep_files::kNoDataset) +
-         "/" + cell.value("algo", "") + (point.empty() ? "" : "/" + point_label(point));
-}
 
 ReportFolder read_report_folder(const fs::path& report_dir, const fs::path& sweep_dir) {
   ReportFolder folder;
@@ -140,7 +124,7 @@ ReportFolder read_report_folder(const fs::path& report_dir, const fs::path& swee
   const fs::path to_sweep = fs::absolute(sweep_dir).lexically_normal().lexically_relative(fs::absolute(report_dir).lexically_normal());
   for (const SweepJob& job : folder.sweep.graph.jobs) {
     if (job.kind != JobKind::kCell) continue;
-    SeedFiles& files = folder.seed_files[job_cell_key(job)][job.seed];
+    SeedFiles& files = folder.seed_files[cell_key(job)][job.seed];
     files.record = (to_sweep / job.dir / "record.json").lexically_normal().generic_string();
     files.record_present = fs::is_regular_file(folder.sweep.path(job.dir) / "record.json");
     folder.records_present += files.record_present ? 1 : 0;

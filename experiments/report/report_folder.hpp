@@ -50,8 +50,4 @@ struct ReportFolder {
 // line naming the file) when summary.json or grid.json is missing or not what it should be.
 ReportFolder read_report_folder(const std::filesystem::path& report_dir, const std::filesystem::path& sweep_dir);
 
-// The key of a summary.json cell, as CellSummary::key() spells it ("merge/none/ddpg",
-// "merge/initial/rapid-rl/epsilon=0.3"): the axis values in the grid's axis order.
-std::string cell_key(const nlohmann::json& cell, const Grid& grid);
-
 }  // namespace rapid

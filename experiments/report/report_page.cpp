@@ -16,15 +16,10 @@ namespace fs = std::filesystem;
 
 namespace report_page {
 
-std::optional<double> number(const nlohmann::json& j) {
-  if (!j.is_number()) return std::nullopt;
-  return j.get<double>();
-}
-
 int table_decimals_of(const nlohmann::json& summary) {
   double magnitude = 0.0;
   for (const nlohmann::json& c : summary.value("cells", nlohmann::json::array()))
-    if (const auto m = number(c.value("mean", nlohmann::json()))) magnitude = std::max(magnitude, std::abs(*m));
+    if (const auto m = optional_number(c, "mean")) magnitude = std::max(magnitude, std::abs(*m));
   return table_decimals(magnitude);
 }
 

@@ -39,7 +39,7 @@ std::string claims_table(const json& summary) {
     const json& d = summary["decisions"];
     std::string html =
         "<p>The paper's claims, decided on the per-seed numbers at a family-wise error of α = " +
-        short_number(number(d.value("alpha", json()))) +
+        short_number(optional_number(d, "alpha")) +
         " (docs/decisions.md). CONFIRMED: the claim holds even if every undecided comparison went against it; "
         "REFUTED: it fails even if every undecided comparison went for it.</p>\n<table class=\"answer\" id=\"answer-claims\">"
         "<thead><tr><th>Claim</th><th>The paper says</th><th>Verdict</th><th>Why</th><th>To decide it</th></tr></thead><tbody>\n";

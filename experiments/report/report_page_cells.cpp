@@ -7,6 +7,7 @@
 #include "experiments/report/format.hpp"
 #include "experiments/report/html_text.hpp"
 #include "experiments/report/report_page_sections.hpp"
+#include "experiments/report/summary.hpp"
 #include "experiments/report/seed_curves_svg.hpp"
 #include "experiments/report/summary_svg.hpp"
 
@@ -25,7 +26,7 @@ std::string records_note(const ReportFolder& folder) {
 }
 
 std::string statistics_line(const nlohmann::json& cell, int decimals) {
-  const auto value = [&](const char* key) { return number(cell.value(key, nlohmann::json())); };
+  const auto value = [&](const char* key) { return optional_number(cell, key); };
   std::string statuses;
   const nlohmann::json counts = cell.value("statuses", nlohmann::json::object());
   for (const auto& [status, n] : counts.items())
@@ -41,7 +42,7 @@ std::string statistics_line(const nlohmann::json& cell, int decimals) {
 
 std::string seed_row(const nlohmann::json& seed, const std::string& colour, const SeedFiles* files, int decimals) {
   const std::string status = seed.value("status", "");
-  const std::optional<double> final = number(seed.value("final", nlohmann::json()));
+  const std::optional<double> final = optional_number(seed, "final");
   std::string html = "<tr data-seed=\"" + html_value(seed.value("seed", nlohmann::json(0))) + "\"><td><span class=\"swatch\" style=\"background:" +
                      colour + "\"></span>" + html_value(seed.value("seed", nlohmann::json(0))) + "</td><td class=\"status status-" +
                      html_escape(status) + "\">" + html_escape(status) + "</td><td class=\"final\" data-sort=\"" +
@@ -63,19 +64,19 @@ std::string seed_dots(const nlohmann::json& cell, const std::map<std::uint64_t, 
   std::vector<SeedDot> dots;
   for (const nlohmann::json& seed : cell.value("seeds", nlohmann::json::array()))
     if (seed.value("status", "") == "ok")
-      if (const std::optional<double> f = number(seed.value("final", nlohmann::json()))) {
+      if (const std::optional<double> f = optional_number(seed, "final")) {
         const std::uint64_t s = seed.value("seed", std::uint64_t{0});
         dots.push_back({"seed " + std::to_string(s), *f, colours.at(s)});
       }
-  const std::string svg = seed_dots_svg(dots, number(cell.value("mean", nlohmann::json())),
-                                        number(cell.value("std", nlohmann::json())), range);
+  const std::string svg = seed_dots_svg(dots, optional_number(cell, "mean"),
+                                        optional_number(cell, "std"), range);
   return svg.empty() ? "" : "<figure class=\"dots-figure\">" + svg + "<figcaption>Final return of every ok seed (dots) "
                             "beside the mean (tick) ± std (bar), on the scenario's range.</figcaption></figure>\n";
 }
 
 std::string cell_details(const ReportFolder& folder, const nlohmann::json& cell, std::size_t index, int decimals,
                          std::pair<double, double> range) {
-  const std::string key = cell_key(cell, folder.sweep.grid);
+  const std::string key = summary_cell_key(cell, folder.sweep.grid.axes);
   const auto files = folder.seed_files.find(key);
   const auto curves = folder.seed_curves.find(key);
   const nlohmann::json seeds = cell.value("seeds", nlohmann::json::array());
@@ -87,7 +88,7 @@ std::string cell_details(const ReportFolder& folder, const nlohmann::json& cell,
                      "\"><summary>" + html_escape(row_label(cell.value("scenario", ""), cell.value("dataset", nlohmann::json()))) +
                      " / " + html_escape(algo_display_name(cell.value("algo", ""))) +
                      (point.empty() ? "" : " (" + html_escape(point) + ")") + ": " +
-                     html_escape(table_cell_text(number(cell["mean"]), number(cell["std"]), cell.value("n_ok", 0),
+                     html_escape(table_cell_text(optional_number(cell, "mean"), optional_number(cell, "std"), cell.value("n_ok", 0),
                                                  cell.value("n_expected", 0), decimals, " ± ", "—")) +
                      "</summary>\n<div class=\"drill\">\n" + statistics_line(cell, decimals) +
                      seed_dots(cell, colours, range);
@@ -116,7 +117,7 @@ std::string cells_section(const ReportFolder& folder) {
   std::map<std::string, std::pair<double, double>> range;  // scenario → lowest and highest ok final
   for (const nlohmann::json& cell : cells)
     for (const nlohmann::json& seed : cell.value("seeds", nlohmann::json::array()))
-      if (const std::optional<double> f = number(seed.value("final", nlohmann::json())); f && seed.value("status", "") == "ok") {
+      if (const std::optional<double> f = optional_number(seed, "final"); f && seed.value("status", "") == "ok") {
         const auto [it, added] = range.try_emplace(cell.value("scenario", ""), *f, *f);
         it->second = {std::min(it->second.first, *f), std::max(it->second.second, *f)};
       }

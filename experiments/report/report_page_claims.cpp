@@ -23,7 +23,7 @@ std::string statement_of(const nlohmann::json& claims, const std::string& id) {
 namespace {
 
 std::string p_text(const nlohmann::json& p) {
-  const std::optional<double> x = number(p);
+  const std::optional<double> x = optional_number(p);
   return x ? short_number(x) : "—";
 }
 
@@ -40,7 +40,7 @@ std::string comparisons_table(const nlohmann::json& d) {
     const nlohmann::json needed = c.value("seeds_needed", nlohmann::json());
     html += "<tr><td>" + std::to_string(index++) + "</td><td>" + html_escape(c.value("where", "")) + "</td><td>" +
             html_escape(c.value("metric", "")) + "</td><td>" + html_escape(c.value("x", "")) + " vs " +
-            html_escape(c.value("y", "")) + "</td><td>" + short_number(number(c.value("difference", nlohmann::json()))) +
+            html_escape(c.value("y", "")) + "</td><td>" + short_number(optional_number(c, "difference")) +
             "</td><td>" + p_text(c.value("p_difference", nlohmann::json())) + "</td><td>" +
             p_text(c.value("p_equivalence", nlohmann::json())) + "</td><td>" + html_escape(c.value("outcome", "")) +
             (c.contains("frozen") ? " (" + html_value(c["frozen"]) + ")" : "") + "</td>" + (wanted ? "<td>" + html_escape(c.value("wanted", "")) + "</td>" : "") + "<td>" +
@@ -57,7 +57,7 @@ std::string decided(const nlohmann::json& summary) {
       "<h3>Decided verdicts</h3>\n<p>Each comparison tested on the per-seed numbers (Welch's t test for a difference, "
       "TOST for equivalence within ±δ), all " +
       std::to_string(d.value("family_size", 0)) + " hypotheses under Holm's procedure at α = " +
-      short_number(number(d.value("alpha_per_look", nlohmann::json()))) + "; δ: " +
+      short_number(optional_number(d, "alpha_per_look")) + "; δ: " +
       html_escape(d.value("delta_rule", "")) +
       ".</p>\n<table class=\"claims\" id=\"decided-claims\"><thead><tr><th>Claim</th><th>Statement</th><th>Verdict</th>"
       "<th>Reason</th></tr></thead><tbody>\n";
@@ -76,7 +76,7 @@ std::string baselines_decided(const nlohmann::json& summary) {
   return "<h3>Beside the claims: RAPID-RL against the baselines the paper does not run</h3>\n<p>RAPID-RL's final "
          "returns against each in every row, by the same tests as a family of their own: " +
          std::to_string(d.value("family_size", 0)) + " hypotheses under Holm's procedure at α = " +
-         short_number(number(d.value("alpha_per_look", nlohmann::json()))) +
+         short_number(optional_number(d, "alpha_per_look")) +
          ", so the verdicts above are those the grid would get without these baselines.</p>\n" + comparisons_table(d) +
          "\n";
 }

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "experiments/run/json_numbers.hpp"  // optional_number: summary.json spells "cannot exist" as null
 #include "experiments/report/report_folder.hpp"
 
 namespace rapid::report_page {
@@ -21,8 +22,6 @@ std::string cells_section(const ReportFolder& folder);    // the drill-down per 
 std::string verdict_cell(const std::string& verdict);
 // The statement of claim `id` in summary.json's "claims" array; empty when it has none.
 std::string statement_of(const nlohmann::json& claims, const std::string& id);
-// A JSON number as a double; nullopt for null (summary.json's "cannot exist") or anything else.
-std::optional<double> number(const nlohmann::json& j);
 // The decimals of Table I (table_decimals of the largest |mean|), so every section agrees with it.
 int table_decimals_of(const nlohmann::json& summary);
 // The id of a cell's drill-down: "cell-<its index in summary.json's cells>".

@@ -9,6 +9,7 @@
 #include "experiments/report/html_text.hpp"
 #include "experiments/report/paper_ranking.hpp"
 #include "experiments/report/report_page_sections.hpp"
+#include "experiments/report/summary.hpp"
 #include "experiments/report/summary_svg.hpp"
 
 namespace rapid::report_page {
@@ -32,7 +33,7 @@ std::string table_i(const ReportFolder& folder) {
   const nlohmann::json& s = folder.summary;
   const int decimals = table_decimals_of(s);
   std::map<std::string, std::size_t> index_of;  // cell key → index in summary.json's cells
-  for (std::size_t i = 0; i < s["cells"].size(); ++i) index_of[cell_key(s["cells"][i], folder.sweep.grid)] = i;
+  for (std::size_t i = 0; i < s["cells"].size(); ++i) index_of[summary_cell_key(s["cells"][i], folder.sweep.grid.axes)] = i;
   const bool axes = !folder.sweep.grid.axes.empty();
   const std::vector<std::string> algos = table_columns(s);
 
@@ -55,11 +56,11 @@ std::string table_i(const ReportFolder& folder) {
         continue;
       }
       const nlohmann::json& cell = s["cells"][index->second];
-      const std::optional<double> mean = number(cell["mean"]);
+      const std::optional<double> mean = optional_number(cell, "mean");
       const bool best = row.value("best", nlohmann::json()) == algo;
       html += "<td class=\"cell" + std::string(best ? " best" : "") + "\" data-cell=\"" + html_escape(index->first) + "\"" +
               sort_value(mean) + "><a href=\"#" + cell_anchor(index->second) + "\">" +
-              html_escape(table_cell_text(mean, number(cell["std"]), cell.value("n_ok", 0), cell.value("n_expected", 0),
+              html_escape(table_cell_text(mean, optional_number(cell, "std"), cell.value("n_ok", 0), cell.value("n_expected", 0),
                                           decimals, " ± ", "—")) +
               "</a></td>";
     }
@@ -76,7 +77,7 @@ std::string colour_of(const nlohmann::json& summary, const std::string& algo) {
 }
 
 std::optional<double> bound(const nlohmann::json& ci, std::size_t i) {
-  return ci.is_array() && ci.size() == 2 ? number(ci[i]) : std::nullopt;
+  return ci.is_array() && ci.size() == 2 ? optional_number(ci[i]) : std::nullopt;
 }
 
 // The probability of improvement of every comparison as points with their intervals (rliable's
@@ -88,7 +89,7 @@ std::string poi_plot(const ReportFolder& folder) {
     rows.push_back({scenario_display_name(e.value("scenario", "")) + " / " + dataset_display_name(e.value("dataset", "")) +
                         (e.contains("point") ? " (" + e.value("point", "") + ")" : "") + ": " +
                         algo_display_name(e.value("algo", "")) + " > " + algo_display_name(e.value("baseline", "")),
-                    number(e.value("p", nlohmann::json())), bound(ci, 0), bound(ci, 1),
+                    optional_number(e, "p"), bound(ci, 0), bound(ci, 1),
                     colour_of(folder.summary, e.value("baseline", ""))});
   }
   const std::string svg = interval_plot_svg(rows, "poi-plot", "P(X > Y)", 0.5, std::pair{0.0, 1.0});
@@ -101,7 +102,7 @@ std::string iqm_plot(const ReportFolder& folder) {
   std::vector<IntervalRow> rows;
   for (const nlohmann::json& e : folder.summary.value("aggregate_iqm", nlohmann::json::array())) {
     const nlohmann::json ci = e.value("ci", nlohmann::json());
-    rows.push_back({algo_display_name(e.value("algo", "")), number(e.value("iqm", nlohmann::json())), bound(ci, 0), bound(ci, 1),
+    rows.push_back({algo_display_name(e.value("algo", "")), optional_number(e, "iqm"), bound(ci, 0), bound(ci, 1),
                     colour_of(folder.summary, e.value("algo", ""))});
   }
   const std::string svg = interval_plot_svg(rows, "iqm-plot", "IQM of the final return");
@@ -121,7 +122,7 @@ std::string profiles(const ReportFolder& folder) {
         if (cell.value("scenario", "") != scenario || cell.value("algo", "") != algo) continue;
         for (const nlohmann::json& seed : cell.value("seeds", nlohmann::json::array()))
           if (seed.value("status", "") == "ok")
-            if (const std::optional<double> f = number(seed.value("final", nlohmann::json()))) s.finals.push_back(*f);
+            if (const std::optional<double> f = optional_number(seed, "final")) s.finals.push_back(*f);
       }
       series.push_back(std::move(s));
     }
@@ -142,7 +143,7 @@ std::string poi_table(const ReportFolder& folder) {
   std::string html = "<table class=\"sortable numbers\" id=\"poi-table\">" + header(names) + "<tbody>\n";
   std::size_t order = 0;
   for (const nlohmann::json& e : entries) {
-    const std::optional<double> p = number(e.value("p", nlohmann::json()));
+    const std::optional<double> p = optional_number(e, "p");
     html += "<tr data-order=\"" + std::to_string(order++) + "\"><td>" +
             html_escape(scenario_display_name(e.value("scenario", ""))) + "</td><td>" +
             html_escape(dataset_display_name(e.value("dataset", ""))) + "</td>";
@@ -166,7 +167,7 @@ std::string iqm_table(const ReportFolder& folder) {
       header({"Algorithm", "IQM", "95% interval", "Runs", "Cells"}) + "<tbody>\n";
   std::size_t order = 0;
   for (const nlohmann::json& e : entries) {
-    const std::optional<double> iqm = number(e.value("iqm", nlohmann::json()));
+    const std::optional<double> iqm = optional_number(e, "iqm");
     html += "<tr data-order=\"" + std::to_string(order++) + "\"><td>" + html_escape(algo_display_name(e.value("algo", ""))) +
             "</td><td" + sort_value(iqm) + ">" + (iqm ? fixed(*iqm, decimals) : "—") + "</td><td>" +
             interval_text(e.value("ci", nlohmann::json()), decimals) + "</td><td data-sort=\"" +

@@ -9,7 +9,8 @@
 #include <vector>
 
 #include "experiments/report/format.hpp"
-#include "experiments/sweep/graph.hpp"
+#include "experiments/report/summary.hpp"
+#include "experiments/run/json_numbers.hpp"
 
 namespace rapid {
 
@@ -18,10 +19,6 @@ namespace {
 using nlohmann::json;
 
 bool has_axis(const json& j) { return j.contains("axis") && !j["axis"].empty(); }
-
-std::optional<double> number_of(const json& j, const char* key) {
-  return j.contains(key) && j[key].is_number() ? std::optional<double>(j[key].get<double>()) : std::nullopt;
-}
 
 // One summary's Table I without axis rows (a tuned grid has none): row "scenario/dataset" → algo →
 // its cell, and the rows and algorithms in the summary's order.
@@ -37,10 +34,7 @@ Table table_of(const json& summary) {
   std::map<std::string, json> cell_by_key;
   for (const json& cell : summary.at("cells")) {
     if (has_axis(cell)) continue;
-    const json& dataset = cell.at("dataset");
-    cell_by_key[cell.at("scenario").get<std::string>() + "/" +
-                (dataset.is_string() ? dataset.get<std::string>() : sweep_files::kNoDataset) + "/" +
-                cell.at("algo").get<std::string>()] = cell;
+    cell_by_key[summary_cell_key(cell)] = cell;
   }
   for (const json& row : summary.at("table")) {
     if (has_axis(row) || !row.at("dataset").is_string()) continue;
@@ -65,7 +59,7 @@ const json* find_cell(const Table& t, const std::string& row, const std::string&
 }
 
 std::string iqm_text(const json* entry) {
-  if (entry == nullptr || !number_of(*entry, "iqm")) return "—";
+  if (entry == nullptr || !optional_number(*entry, "iqm")) return "—";
   std::string text = fixed(entry->at("iqm").get<double>(), 1);
   if (entry->contains("ci") && entry->at("ci").is_array() && entry->at("ci").size() == 2)
     text += " [" + fixed(entry->at("ci")[0].get<double>(), 1) + ", " + fixed(entry->at("ci")[1].get<double>(), 1) + "]";
@@ -132,7 +126,7 @@ void write_baselines(std::ostringstream& md, const json& now, const json& before
     }
     lines.push_back("| " + c.at("where").get<std::string>() + " | " + c.at("x").get<std::string>() + " vs " +
                     c.at("y").get<std::string>() + " | " + is + " | " + was + " | " +
-                    short_number(number_of(c, "p_difference")) + " |");
+                    short_number(optional_number(c, "p_difference")) + " |");
   }
   const auto family_size = [](const json& summary) {
     const json& d = summary.value("baseline_decisions", json());
@@ -163,7 +157,7 @@ std::string side_by_side_markdown(const json& now, const std::string& now_label,
   double magnitude = 0.0;
   for (const auto& [row, cells] : a.cells)
     for (const auto& [algo, cell] : cells)
-      if (const auto m = number_of(cell, "mean")) magnitude = std::max(magnitude, std::abs(*m));
+      if (const auto m = optional_number(cell, "mean")) magnitude = std::max(magnitude, std::abs(*m));
   const int decimals = table_decimals(magnitude);
 
   std::ostringstream md;
@@ -182,9 +176,9 @@ std::string side_by_side_markdown(const json& now, const std::string& now_label,
       const json* earlier = find_cell(b, row, algo);
       std::string text = "—";
       if (cell != nullptr)
-        text = table_cell_text(number_of(*cell, "mean"), number_of(*cell, "std"), cell->at("n_ok").get<int>(),
+        text = table_cell_text(optional_number(*cell, "mean"), optional_number(*cell, "std"), cell->at("n_ok").get<int>(),
                                cell->at("n_expected").get<int>(), decimals, " ± ", "—");
-      const std::optional<double> was = earlier == nullptr ? std::nullopt : number_of(*earlier, "mean");
+      const std::optional<double> was = earlier == nullptr ? std::nullopt : optional_number(*earlier, "mean");
       md << " " << text << " (" << (was ? fixed(*was, decimals) : "—") << ") |";
     }
     md << "\n";

@@ -1,6 +1,7 @@
 #include "experiments/report/summary.hpp"
 
 #include "algos/registry.hpp"
+#include "experiments/sweep/graph.hpp"
 
 namespace rapid {
 
@@ -9,7 +10,7 @@ bool is_paper_baseline(const std::string& algo) { return algo != kRapidRl && fin
 bool is_baseline(const std::string& algo) { return algo != kRapidRl && !find_algorithm(algo).variant; }
 
 std::string CellSummary::key() const {
-  return scenario + "/" + (dataset.empty() ? "none" : dataset) + "/" + algo + (axis.empty() ? "" : "/" + point_label(axis));
+  return cell_key(scenario, dataset, algo, axis);
 }
 
 void CellSummary::replace_seeds(std::vector<SeedResult> kept) {

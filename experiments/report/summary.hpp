@@ -244,5 +244,8 @@ nlohmann::json summary_to_json(const Summary& summary);
 // A folder's summary.json as a document of this schema (`rapid paper`, `rapid beside`): throws
 // std::invalid_argument naming the file when it is missing, not JSON or of another schema.
 nlohmann::json read_summary_document(const std::filesystem::path& dir);
+// The key of one of such a document's cells, as CellSummary::key() spelled it when writing, with
+// the axis values in the order of `axes` (the grid's; none for a grid without axes).
+std::string summary_cell_key(const nlohmann::json& cell, const std::vector<GridAxis>& axes = {});
 
 }  // namespace rapid

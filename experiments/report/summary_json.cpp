@@ -5,6 +5,7 @@
 #include "algos/registry.hpp"
 #include "core/json_input.hpp"
 #include "experiments/report/summary.hpp"
+#include "experiments/sweep/graph.hpp"
 #include "experiments/run/json_numbers.hpp"
 
 namespace rapid {
@@ -206,6 +207,16 @@ nlohmann::json summary_to_json(const Summary& s) {
   if (!s.adaptive_seeds.is_null()) j["adaptive_seeds"] = s.adaptive_seeds;  // absent outside --decide folders
   if (!s.provenance.empty()) j["provenance"] = s.provenance.to_json();  // absent without an ok record
   return j;
+}
+
+std::string summary_cell_key(const nlohmann::json& cell, const std::vector<GridAxis>& axes) {
+  AxisPoint point;
+  const nlohmann::json axis = cell.value("axis", nlohmann::json::object());
+  for (const GridAxis& a : axes)
+    if (axis.contains(a.key)) point.emplace_back(a.key, axis[a.key]);
+  const nlohmann::json dataset = cell.value("dataset", nlohmann::json());
+  return cell_key(cell.value("scenario", ""), dataset.is_string() ? dataset.get<std::string>() : "", cell.value("algo", ""),
+                  point);
 }
 
 nlohmann::json read_summary_document(const std::filesystem::path& dir) {

@@ -33,9 +33,15 @@ std::string SweepJob::id() const {
     case JobKind::kDatasets: return scenario + point_segment(axis) + "/datasets";
     case JobKind::kCell: break;
   }
-  return scenario + "/" + (dataset.empty() ? sweep_files::kNoDataset : dataset) + "/" + algo + point_segment(axis) +
-         "/seed" + std::to_string(seed);
+  return cell_key(scenario, dataset, algo, axis) + "/seed" + std::to_string(seed);
 }
+
+std::string cell_key(const std::string& scenario, const std::string& dataset, const std::string& algo,
+                     const AxisPoint& point) {
+  return scenario + "/" + (dataset.empty() ? sweep_files::kNoDataset : dataset) + "/" + algo + point_segment(point);
+}
+
+std::string cell_key(const SweepJob& job) { return cell_key(job.scenario, job.dataset, job.algo, job.axis); }
 
 AxisPoint SweepJob::reference_point() const { return read_part(axis, reference_reads); }
 

@@ -66,6 +66,13 @@ struct SweepJob {
   int stage() const { return static_cast<int>(kind); }
 };
 
+// A cell's key, its jobs' id without the seed: "merge/initial/rapid-rl", "merge/none/ddpg" (an empty
+// dataset), "merge/initial/rapid-rl/epsilon=0.3". Selections, tuning, summaries and reports all
+// key cells by it.
+std::string cell_key(const std::string& scenario, const std::string& dataset, const std::string& algo,
+                     const AxisPoint& point = {});
+std::string cell_key(const SweepJob& job);  // a cell job's
+
 struct JobGraph {
   std::vector<SweepJob> jobs;  // ordered by stage, then scenario, dataset, algorithm, seed
 };

@@ -98,11 +98,6 @@ Selection parse_selection(const std::string& text, const Grid& grid, const JobGr
   return s;
 }
 
-std::string cell_key(const SweepJob& job) {
-  const std::string id = job.id();
-  return id.substr(0, id.rfind("/seed"));
-}
-
 bool selects(const Selection& s, const SweepJob& job) {
   if (job.kind != JobKind::kCell) return s.text.empty();
   if (!s.cells.empty() && !s.cells.count(cell_key(job))) return false;

@@ -33,9 +33,6 @@ struct Selection {
 // selection that matches no job.
 Selection parse_selection(const std::string& text, const Grid& grid, const JobGraph& graph);
 
-// A cell job's cell key (its id without the seed): "merge/initial/rapid-rl".
-std::string cell_key(const SweepJob& job);
-
 // Whether a cell passes the filters (dataset-stage jobs are never selected directly).
 bool selects(const Selection& selection, const SweepJob& job);
 

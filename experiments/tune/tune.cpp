@@ -28,10 +28,6 @@ std::vector<std::string> datasets_of(const Grid& grid, const std::string& algo) 
   return find_algorithm(algo).uses_prior ? grid.datasets : std::vector<std::string>{""};
 }
 
-std::string cell_key_of(const std::string& scenario, const std::string& dataset, const std::string& algo) {
-  return scenario + "/" + (dataset.empty() ? sweep_files::kNoDataset : dataset) + "/" + algo;
-}
-
 // The seeds of unit u alone.
 std::vector<std::uint64_t> seeds_of_unit(const SearchSpace& space, const Grid& grid, const std::string& algo, int u) {
   const bool prior = find_algorithm(algo).uses_prior;
@@ -100,7 +96,7 @@ std::vector<TrialScores> replay_tune(const fs::path& dir, const TunePlan& plan) 
     const SweepFolder folder = make_sweep_folder(candidate_dir(dir, k), plan.candidates[static_cast<std::size_t>(k)]);
     std::map<std::pair<std::string, std::uint64_t>, const SweepJob*> jobs;  // (cell key, seed) → job
     for (const SweepJob& job : folder.graph.jobs)
-      if (job.kind == JobKind::kCell) jobs[{cell_key_of(job.scenario, job.dataset, job.algo), job.seed}] = &job;
+      if (job.kind == JobKind::kCell) jobs[{cell_key(job.scenario, job.dataset, job.algo), job.seed}] = &job;
     for (TrialScores& t : searches) {
       t.overrides.push_back(candidate_overrides(space, t.scenario, t.algo, k));
       const std::vector<std::string> datasets = datasets_of(plan.grid, t.algo);
@@ -109,7 +105,7 @@ std::vector<TrialScores> replay_tune(const fs::path& dir, const TunePlan& plan) 
       for (int u = 0; u < most; ++u) {
         for (std::size_t d = 0; d < datasets.size(); ++d)
           for (std::uint64_t seed : seeds_of_unit(space, plan.grid, t.algo, u)) {
-            const SweepJob* job = jobs.at({cell_key_of(t.scenario, datasets[d], t.algo), seed});
+            const SweepJob* job = jobs.at({cell_key(t.scenario, datasets[d], t.algo), seed});
             const CellRecord r = read_cell_record(folder, *job);
             if (!r.done()) {
               gap[d] = true;
@@ -145,7 +141,7 @@ std::vector<TrialJobs> missing_trials(const TunePlan& plan, const std::vector<Tr
       if (t.scores_by_units[static_cast<std::size_t>(k)][static_cast<std::size_t>(units)]) continue;
       Selection& s = groups[{k, seeds}];
       s.seeds.insert(seeds.begin(), seeds.end());
-      for (const std::string& d : datasets_of(plan.grid, t.algo)) s.cells.insert(cell_key_of(t.scenario, d, t.algo));
+      for (const std::string& d : datasets_of(plan.grid, t.algo)) s.cells.insert(cell_key(t.scenario, d, t.algo));
       s.text = "rapid tune: rung " + std::to_string(t.state.rung + 1) + " (" + std::to_string(units) + " units)";
     }
   }

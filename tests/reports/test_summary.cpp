@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <set>
 
 #include "algos/registry.hpp"
 #include "core/dataset_io.hpp"
@@ -15,6 +16,7 @@
 #include "experiments/report/summarize.hpp"
 #include "experiments/report/tables.hpp"
 #include "experiments/report/write_reports.hpp"
+#include "experiments/sweep/state.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
 #include "tests/reports/report_test_util.hpp"
 
@@ -309,6 +311,38 @@ TEST(SummaryWithAReferenceAxis, ReadsEachPointsDatasets) {
   const nlohmann::json& missing = datasets["initial @ gamma=0.99"];
   EXPECT_TRUE(missing["missing"].get<bool>());
   EXPECT_EQ(missing["error"], "datasets/gamma=0.99/pendulum/initial.h5 is missing");
+}
+
+// summary.json's readers (report.html, `rapid beside`, `rapid paper`, the --decide replay) find a
+// cell by summary_cell_key: it must be the key the sweep gives the cell's jobs and the one Table
+// I's columns name, axes (two here, one an algorithm's and one the reference's) and DDPG's
+// missing dataset included.
+TEST(SummaryCellKey, IsTheKeyOfTheCellsJobsAndOfTheTablesColumns) {
+  testing::ScratchDir scratch;
+  const std::filesystem::path sweep = scratch.path() / "sweep";
+  nlohmann::json grid = report_test::make_grid("keys", {"pendulum"}, {"initial", "medium"}, {"rapid-rl", "ddpg"}, {0, 1});
+  grid["axes"] = {{"gamma", {0.9, 0.99}}, {"epsilon", {-0.5, 0.25}}};
+  report_test::write_grid(sweep, grid);
+  SummaryOptions options;
+  options.claims = false;
+  const nlohmann::json j = summary_to_json(build_summary(sweep, options));
+  const SweepFolder folder = open_sweep_folder(sweep);
+
+  std::set<std::string> job_keys, summary_keys;
+  for (const SweepJob& job : folder.graph.jobs)
+    if (job.kind == JobKind::kCell) job_keys.insert(cell_key(job));
+  for (const nlohmann::json& cell : j["cells"]) summary_keys.insert(summary_cell_key(cell, folder.grid.axes));
+  EXPECT_EQ(summary_keys, job_keys);
+  EXPECT_EQ(job_keys.size(), 2u * 2u * 2u + 2u);  // rapid-rl: dataset × gamma × epsilon; ddpg: gamma
+  EXPECT_TRUE(job_keys.count("pendulum/medium/rapid-rl/epsilon=0.25,gamma=0.99")) << ::testing::PrintToString(job_keys);
+  EXPECT_TRUE(job_keys.count("pendulum/none/ddpg/gamma=0.9")) << ::testing::PrintToString(job_keys);
+  std::size_t columns = 0;
+  for (const nlohmann::json& row : j["table"])
+    for (const nlohmann::json& column : row["columns"]) {
+      EXPECT_TRUE(summary_keys.count(column["cell"].get<std::string>())) << column.dump();
+      ++columns;
+    }
+  EXPECT_GT(columns, 0u);
 }
 
 // Algorithms the paper does not have are columns after the paper's five, under their own names,
