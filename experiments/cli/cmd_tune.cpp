@@ -34,8 +34,10 @@ constexpr const char* kIdentity = "tune.json";
 
 // --plan BENCH.json: the runs and predicted core-hours of each search from `rapid bench`'s
 // measured costs (its run_costs at the profile's schedule), the trials' evaluation scaled by the
-// episodes they run against the profile's.
-int print_plan(const TunePlan& plan, const std::string& bench_path) {
+// episodes they run against the profile's. With the searches of a tuning folder (`so_far`), also
+// what the runs done so far cost against what the plan puts them at, and what the runs left need
+// at each search's measured rate: the campaign's cost against its prediction, and its time to go.
+int print_plan(const TunePlan& plan, const std::string& bench_path, const std::vector<TrialScores>* so_far) {
   nlohmann::json bench;
   try {
     bench = read_json_input(bench_path, std::size_t{16} << 20);
@@ -56,7 +58,11 @@ int print_plan(const TunePlan& plan, const std::string& bench_path) {
   std::cout << "rapid tune plan: " << plan.space.candidates << " candidates, rungs";
   for (int r : plan.space.rungs) std::cout << " " << r;
   std::cout << " units; " << units << " units = " << units * per_unit << " runs per (scenario, algorithm)\n"
-            << "scenario\talgorithm\truns\tpredicted s per run\tpredicted core-hours\n";
+            << "scenario\talgorithm\truns\tpredicted s per run\tpredicted core-hours"
+            << (so_far ? "\truns done\tspent core-hours\tspent s per run\tspent / predicted" : "") << "\n";
+  int done_runs = 0;
+  double spent_h = 0, predicted_done_h = 0, left_h = 0;
+  std::size_t search = 0;
   for (const std::string& scenario : plan.grid.scenarios)
     for (const std::string& algo : plan.grid.algos) {
       const auto it = std::find_if(bench["run_costs"].begin(), bench["run_costs"].end(), [&](const nlohmann::json& c) {
@@ -68,10 +74,26 @@ int print_plan(const TunePlan& plan, const std::string& bench_path) {
       const double run_s = it->value("train_s", 0.0) + it->value("eval_s_max", 0.0) * episodes(trial) / episodes(profile);
       const double hours = run_s * units * per_unit / 3600;
       total_h += hours;
-      std::cout << scenario << "\t" << algo << "\t" << units * per_unit << "\t" << fixed(run_s, 1) << "\t"
-                << fixed(hours, 2) << "\n";
+      std::cout << scenario << "\t" << algo << "\t" << units * per_unit << "\t" << fixed(run_s, 1) << "\t" << fixed(hours, 2);
+      if (so_far) {
+        const TrialScores& t = (*so_far)[search++];  // replay_tune's order: scenarios, then algorithms
+        const double spent_per_run = t.runs > 0 ? t.wall_s / t.runs : run_s;  // no run yet: the plan's
+        done_runs += t.runs;
+        spent_h += t.wall_s / 3600;
+        predicted_done_h += run_s * t.runs / 3600;
+        left_h += spent_per_run * std::max(0, units * per_unit - t.runs) / 3600;
+        std::cout << "\t" << t.runs << "\t" << fixed(t.wall_s / 3600, 2) << "\t"
+                  << (t.runs > 0 ? fixed(spent_per_run, 1) + "\t" + fixed(spent_per_run / run_s, 2) : "—\t—");
+      }
+      std::cout << "\n";
     }
   std::cout << "in all: " << fixed(total_h, 1) << " core-hours predicted (an upper bound on evaluation: every episode to the horizon)\n";
+  if (so_far)
+    std::cout << "so far: " << done_runs << " of " << units * per_unit * static_cast<int>(so_far->size()) << " runs in "
+              << fixed(spent_h, 1) << " core-hours (the records' wall time), which the plan puts at " << fixed(predicted_done_h, 1)
+              << (predicted_done_h > 0 ? " (spent / predicted " + fixed(spent_h / predicted_done_h, 2) + ")" : "")
+              << "; the runs left need about " << fixed(left_h, 1)
+              << " core-hours more at each search's measured rate per run (the plan's where it has none)\n";
   return kExitOk;
 }
 
@@ -97,8 +119,15 @@ int tune_command(const TuneOptions& o) {
     if (std::find(plan.grid.algos.begin(), plan.grid.algos.end(), a) == plan.grid.algos.end())
       throw UsageError("--algos: '" + a + "' is not an algorithm of grid " + plan.grid.name);
   const std::set<std::string> only(o.algos.begin(), o.algos.end());
-  if (!o.plan_from.empty()) return print_plan(plan, o.plan_from);
   const fs::path dir = o.out.empty() ? fs::path("results") / (plan.grid.name + "-tune") : fs::path(o.out);
+  if (!o.plan_from.empty()) {
+    // A tuning folder of this grid and space adds what its runs so far cost; another one's would mislead.
+    if (!fs::exists(dir / kIdentity)) return print_plan(plan, o.plan_from, nullptr);
+    if (read_json_file(dir / kIdentity) != tune_identity(plan))
+      throw UsageError("--out: " + dir.string() + " was tuned with another grid or space; its runs are not this plan's");
+    const std::vector<TrialScores> searches = replay_tune(dir, plan);
+    return print_plan(plan, o.plan_from, &searches);
+  }
   claim_folder(dir, plan, o.force);
   for (;;) {
     const std::vector<TrialScores> searches = replay_tune(dir, plan);
@@ -162,8 +191,9 @@ Command add_tune_command(CLI::App& parent) {
       ->delimiter(',');
   sub->add_option("--backend", o->backend, "local (runs the rungs here) or slurm (submits a rung; run again when it has run)");
   sub->add_option("--plan", o->plan_from,
-                  "print each search's runs and predicted core-hours from a rapid bench --json FILE of the grid's profile, "
-                  "and run nothing");
+                  "print each search's runs and predicted core-hours from a rapid bench --json FILE of the grid's profile "
+                  "and, when the tuning folder exists, what its runs so far cost against that and what the rest need; "
+                  "run nothing");
   sub->add_flag("--force", o->force, "write into a folder that holds other files, or was tuned with another grid or space");
   return {sub, [o] { return tune_command(*o); }};
 }

@@ -7,6 +7,7 @@
 
 #include <cstdlib>
 
+#include "experiments/run/run_config.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
 #include "tests/sweep/sweep_test_util.hpp"
 
@@ -91,6 +92,46 @@ TEST(TuneCli, FindsThePlantedSettingAndResumesAfterAKill) {
   a.erase("wall_s");
   a["results"]["pendulum"]["ddpg"].erase("wall_s");
   EXPECT_EQ(a, b);
+}
+
+// --plan prices each search from a bench file; given the tuning folder it adds what the runs done
+// cost and what the rest need, and refuses a folder tuned with another grid or space, or a bench of
+// another profile.
+TEST(TuneCli, PlanPricesTheSearchesAndCountsWhatTheFolderSpent) {
+  testing::ScratchDir dir;
+  const TuneFiles in = write_inputs(dir.path());
+  const fs::path bench = dir.path() / "bench.json", out = dir.path() / "tune";
+  // 36 s of training a run and no evaluation cost: 6 runs (4 candidates × 1 unit, 2 × 1 more) of 36 s.
+  write_json(bench, {{"profile", kDefaultProfile},
+                     {"run_costs", {{{"scenario", "pendulum"}, {"algo", "ddpg"}, {"train_s", 36.0}, {"eval_s_max", 0.0}}}}});
+  const std::string plan = "tune " + in.grid.string() + " --space " + in.space.string() + " --plan " + bench.string() + " --out " + out.string();
+  const Result before = run_rapid(plan);
+  ASSERT_EQ(before.exit_code, 0) << before.output;
+  EXPECT_NE(before.output.find("pendulum\tddpg\t6\t36.0\t0.06\n"), std::string::npos) << before.output;
+  EXPECT_EQ(before.output.find("so far"), std::string::npos) << before.output;
+  EXPECT_FALSE(fs::exists(out));  // --plan runs and writes nothing
+
+  ASSERT_EQ(run_rapid("tune " + in.grid.string() + " --space " + in.space.string() + " --jobs 2 --out " + out.string()).exit_code, 0);
+  fs::remove(out / "c1/jobs/pendulum/none/ddpg/seed50/record.json");  // one trial short
+  const Result after = run_rapid(plan);
+  ASSERT_EQ(after.exit_code, 0) << after.output;
+  EXPECT_NE(after.output.find("pendulum\tddpg\t6\t36.0\t0.06\t5\t"), std::string::npos) << after.output;
+  EXPECT_NE(after.output.find("so far: 5 of 6 runs in "), std::string::npos) << after.output;
+  EXPECT_NE(after.output.find("which the plan puts at 0.1"), std::string::npos) << after.output;
+
+  const nlohmann::json identity = read_json(out / "tune.json");
+  nlohmann::json changed = identity;
+  changed["space"]["candidates"] = 8;
+  write_json(out / "tune.json", changed);
+  const Result foreign = run_rapid(plan);
+  EXPECT_EQ(foreign.exit_code, 2);
+  EXPECT_NE(foreign.output.find("was tuned with another grid or space"), std::string::npos) << foreign.output;
+  write_json(out / "tune.json", identity);
+  write_json(bench, {{"profile", "flow"}, {"run_costs", nlohmann::json::array()}});
+  const Result other = run_rapid(plan);
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_NE(other.output.find("measured profile 'flow', the grid's is '" + std::string(kDefaultProfile) + "'"), std::string::npos)
+      << other.output;
 }
 
 TEST(TuneCli, RefusesOverlappingSeedsAndBadSpacesWritingNothing) {
