@@ -9,6 +9,7 @@
 #include "algos/registry.hpp"
 #include "core/contains.hpp"
 #include "experiments/report/format.hpp"
+#include "experiments/sweep/graph.hpp"
 
 namespace rapid {
 
@@ -394,7 +395,7 @@ std::string runs_csv(const Summary& s) {
   for (const GridAxis& axis : s.grid.axes) out << "," << axis.key;
   out << ",seed,step,return\n";
   for (const CellSummary& c : s.cells) {
-    std::string prefix = c.scenario + "," + (c.dataset.empty() ? "none" : c.dataset) + "," + c.algo;
+    std::string prefix = c.scenario + "," + (c.dataset.empty() ? sweep_files::kNoDataset : c.dataset) + "," + c.algo;
     for (const GridAxis& axis : s.grid.axes) prefix += "," + axis_text(c.axis, axis.key);
     for (const SeedResult& r : c.seeds)
       for (const auto& [step, ret] : r.eval)
