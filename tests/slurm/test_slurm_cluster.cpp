@@ -10,6 +10,8 @@
 //    blocked jobs, and the next submission runs everything that is left.
 //  - --decide runs its looks as follow-up jobs, to the same looks, records and decisions as the
 //    local backend's --decide, and refreshes the reports when the looks stop.
+//  - `rapid tune --backend slurm` submits a rung an invocation and, run again until every search
+//    has its winner, writes the tuned.json and trial records the local backend's tune does.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -225,6 +227,46 @@ TEST_F(SlurmCluster, DecideRunsItsLooksAsFollowUpJobsAsTheLocalBackendDoes) {
   EXPECT_NE(again.output.find("nothing to submit"), std::string::npos) << again.output;
   EXPECT_EQ(read_json(slurm / "slurm/submissions.json")["submissions"].size(), submissions);
   EXPECT_EQ(read_json(slurm / "decide.json")["looks"], local_plan["looks"]);
+}
+
+TEST_F(SlurmCluster, TuneSubmitsARungAnInvocationToTheLocalBackendsWinner) {
+  const TuneFiles in = write_tiny_tune(dir_.path());
+  const fs::path local = dir_.path() / "local", slurm = dir_.path() / "slurm";
+  const std::string tune = "tune " + in.grid.string() + " --space " + in.space.string();
+  const Result l = run_rapid(tune + " --jobs 2 --out " + local.string());
+  ASSERT_EQ(l.exit_code, 0) << l.output;
+
+  // Rung 1 (4 candidates), rung 2 (the better 2), then the results: three invocations.
+  int invocations = 0;
+  for (; invocations < 5 && !fs::exists(slurm / "tuned.json"); ++invocations) {
+    const Result s = run_rapid(tune + " --backend slurm --out " + slurm.string());
+    ASSERT_EQ(s.exit_code, 0) << s.output;
+    if (fs::exists(slurm / "tuned.json")) {
+      EXPECT_NE(s.output.find("every search has its winner"), std::string::npos) << s.output;
+      break;
+    }
+    EXPECT_NE(s.output.find("this rung's trials are submitted"), std::string::npos) << s.output;
+    ASSERT_FALSE(submitted_ids(s.output).empty()) << s.output;
+    ASSERT_TRUE(wait_for_jobs(submitted_ids(s.output), kTimeoutS)) << "the rung did not finish in time\n" << s.output;
+  }
+  EXPECT_EQ(invocations, 2);  // two rungs submitted; the third invocation wrote the results
+  nlohmann::json a = read_json(slurm / "tuned.json"), b = read_json(local / "tuned.json");
+  for (nlohmann::json* t : {&a, &b}) {
+    t->erase("wall_s");
+    (*t)["results"]["pendulum"]["ddpg"].erase("wall_s");
+  }
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(read_json(slurm / "tuned-grid.json"), read_json(local / "tuned-grid.json"));
+  for (int k = 0; k < 4; ++k) {
+    const fs::path c = "c" + std::to_string(k);
+    const auto local_records = comparable_run_records(local / c, slurm / c);
+    const auto slurm_records = comparable_run_records(slurm / c, local / c);
+    EXPECT_EQ(slurm_records.size(), local_records.size()) << c;
+    for (const auto& [path, record] : local_records) {
+      ASSERT_TRUE(slurm_records.count(path)) << c / path;
+      EXPECT_EQ(slurm_records.at(path), record) << c / path;
+    }
+  }
 }
 
 }  // namespace

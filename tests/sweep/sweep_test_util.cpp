@@ -43,6 +43,23 @@ void write_json(const fs::path& path, const nlohmann::json& j) {
   std::ofstream(path) << j.dump(1);
 }
 
+TuneFiles write_tiny_tune(const fs::path& dir) {
+  nlohmann::json g = pendulum_grid("g", {"ddpg"}, {0, 1}, 3000);
+  g["config"]["actor_lr"] = 0.5;  // planted: the defaults saturate the actor
+  const nlohmann::json space = {
+      {"name", "pendulum-space"},
+      {"seeds", {50, 51, 52, 53}},
+      {"candidates", 4},
+      {"sampler_seed", 3},
+      {"rungs", {1, 2}},
+      {"trial_config", {{"eval_every", 1000000}, {"eval_episodes", 1}, {"final_eval_episodes", 3}}},
+      {"keys", {{"actor_lr", {{"log_uniform", {3e-4, 3e-3}}}}}}};
+  const TuneFiles f{dir / "g.json", dir / "space.json"};
+  write_json(f.grid, g);
+  write_json(f.space, space);
+  return f;
+}
+
 nlohmann::json read_json(const fs::path& path) {
   std::ifstream in(path);
   return nlohmann::json::parse(in);

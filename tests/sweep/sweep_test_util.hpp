@@ -22,6 +22,15 @@ nlohmann::json pendulum_grid(const std::string& name, const std::vector<std::str
                              const std::vector<int>& seeds, long steps);
 
 void write_json(const fs::path& path, const nlohmann::json& j);
+
+// A tiny `rapid tune` problem, written into `dir` as g.json and space.json: DDPG on a pendulum grid
+// (test seeds 0-1) whose own actor_lr (0.5) saturates the actor, and a space of 4 sane actor_lr
+// candidates on tuning seeds 50-53 in rungs of 1 and 2 units (6 runs), trials evaluated once at
+// the end on 3 episodes.
+struct TuneFiles {
+  fs::path grid, space;
+};
+TuneFiles write_tiny_tune(const fs::path& dir);
 nlohmann::json read_json(const fs::path& path);
 
 struct Result {

@@ -16,30 +16,9 @@ namespace {
 
 using namespace sweep_test;
 
-struct TuneFiles {
-  fs::path grid, space;
-};
-
-TuneFiles write_inputs(const fs::path& dir) {
-  nlohmann::json g = pendulum_grid("g", {"ddpg"}, {0, 1}, 3000);
-  g["config"]["actor_lr"] = 0.5;  // planted: the defaults saturate the actor
-  const nlohmann::json space = {
-      {"name", "pendulum-space"},
-      {"seeds", {50, 51, 52, 53}},
-      {"candidates", 4},
-      {"sampler_seed", 3},
-      {"rungs", {1, 2}},
-      {"trial_config", {{"eval_every", 1000000}, {"eval_episodes", 1}, {"final_eval_episodes", 3}}},
-      {"keys", {{"actor_lr", {{"log_uniform", {3e-4, 3e-3}}}}}}};
-  const TuneFiles f{dir / "g.json", dir / "space.json"};
-  write_json(f.grid, g);
-  write_json(f.space, space);
-  return f;
-}
-
 TEST(TuneCli, FindsThePlantedSettingAndResumesAfterAKill) {
   testing::ScratchDir dir;
-  const TuneFiles in = write_inputs(dir.path());
+  const TuneFiles in = write_tiny_tune(dir.path());
   const fs::path out = dir.path() / "tune";
   const Result r = run_rapid("tune " + in.grid.string() + " --space " + in.space.string() + " --jobs 2 --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -99,7 +78,7 @@ TEST(TuneCli, FindsThePlantedSettingAndResumesAfterAKill) {
 // another profile.
 TEST(TuneCli, PlanPricesTheSearchesAndCountsWhatTheFolderSpent) {
   testing::ScratchDir dir;
-  const TuneFiles in = write_inputs(dir.path());
+  const TuneFiles in = write_tiny_tune(dir.path());
   const fs::path bench = dir.path() / "bench.json", out = dir.path() / "tune";
   // 36 s of training a run and no evaluation cost: 6 runs (4 candidates × 1 unit, 2 × 1 more) of 36 s.
   write_json(bench, {{"profile", kDefaultProfile},
@@ -136,7 +115,7 @@ TEST(TuneCli, PlanPricesTheSearchesAndCountsWhatTheFolderSpent) {
 
 TEST(TuneCli, RefusesOverlappingSeedsAndBadSpacesWritingNothing) {
   testing::ScratchDir dir;
-  const TuneFiles in = write_inputs(dir.path());
+  const TuneFiles in = write_tiny_tune(dir.path());
   nlohmann::json space = read_json(in.space);
   space["seeds"] = {1, 50, 51, 52};
   write_json(in.space, space);
