@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <iostream>
 #include <set>
+#include <stdexcept>
 
 #include "core/atomic_file.hpp"
 #include "core/json_input.hpp"
@@ -62,7 +63,6 @@ int print_plan(const TunePlan& plan, const std::string& bench_path, const std::v
             << (so_far ? "\truns done\tspent core-hours\tspent s per run\tspent / predicted" : "") << "\n";
   int done_runs = 0;
   double spent_h = 0, predicted_done_h = 0, left_h = 0;
-  std::size_t search = 0;
   for (const std::string& scenario : plan.grid.scenarios)
     for (const std::string& algo : plan.grid.algos) {
       const auto it = std::find_if(bench["run_costs"].begin(), bench["run_costs"].end(), [&](const nlohmann::json& c) {
@@ -76,7 +76,10 @@ int print_plan(const TunePlan& plan, const std::string& bench_path, const std::v
       total_h += hours;
       std::cout << scenario << "\t" << algo << "\t" << units * per_unit << "\t" << fixed(run_s, 1) << "\t" << fixed(hours, 2);
       if (so_far) {
-        const TrialScores& t = (*so_far)[search++];  // replay_tune's order: scenarios, then algorithms
+        const auto found = std::find_if(so_far->begin(), so_far->end(),
+                                        [&](const TrialScores& t) { return t.scenario == scenario && t.algo == algo; });
+        if (found == so_far->end()) throw std::logic_error("replay_tune has no search of " + scenario + "/" + algo);
+        const TrialScores& t = *found;
         const double spent_per_run = t.runs > 0 ? t.wall_s / t.runs : run_s;  // no run yet: the plan's
         done_runs += t.runs;
         spent_h += t.wall_s / 3600;

@@ -242,7 +242,8 @@ struct Summary {
 // summary.json ("rapid.summary/1", see docs/reports.md).
 nlohmann::json summary_to_json(const Summary& summary);
 // A folder's summary.json as a document of this schema (`rapid paper`, `rapid beside`): throws
-// std::invalid_argument naming the file when it is missing, not JSON or of another schema.
+// std::invalid_argument naming the file when it is missing, not JSON, of another schema, or has a
+// cell without its scenario, algorithm or dataset (null for a method that reads none).
 nlohmann::json read_summary_document(const std::filesystem::path& dir);
 // The key of one of such a document's cells, as CellSummary::key() spelled it when writing, with
 // the axis values in the order of `axes` (the grid's; none for a grid without axes).

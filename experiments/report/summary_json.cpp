@@ -5,8 +5,8 @@
 #include "algos/registry.hpp"
 #include "core/json_input.hpp"
 #include "experiments/report/summary.hpp"
-#include "experiments/sweep/graph.hpp"
 #include "experiments/run/json_numbers.hpp"
+#include "experiments/sweep/graph.hpp"
 
 namespace rapid {
 
@@ -229,6 +229,18 @@ nlohmann::json read_summary_document(const std::filesystem::path& dir) {
   }
   if (!j.is_object() || j.value("schema", "") != kSummarySchema)
     throw std::invalid_argument(path + " is not a " + std::string(kSummarySchema) + " document");
+  // Every reader keys a cell by summary_cell_key, which cannot tell a cell without its scenario or
+  // algorithm from one of another table: such a cell is refused here, not silently left out.
+  if (!j.contains("cells") || !j["cells"].is_array()) throw std::invalid_argument(path + " has no \"cells\" array");
+  for (std::size_t i = 0; i < j["cells"].size(); ++i) {
+    const nlohmann::json& cell = j["cells"][i];
+    const auto is_string = [&](const char* key) { return cell.is_object() && cell.contains(key) && cell[key].is_string(); };
+    const std::string where = path + ": cells[" + std::to_string(i) + "] ";
+    if (!is_string("scenario")) throw std::invalid_argument(where + "has no string \"scenario\"");
+    if (!is_string("algo")) throw std::invalid_argument(where + "has no string \"algo\"");
+    if (!cell.contains("dataset") || !(cell["dataset"].is_string() || cell["dataset"].is_null()))
+      throw std::invalid_argument(where + "has no \"dataset\" (a name, or null for a method without one)");
+  }
   return j;
 }
 

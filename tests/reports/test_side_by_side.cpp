@@ -123,6 +123,19 @@ TEST(SideBySideCli, PrintsOrWritesAndRefusesBadInputWithOneLine) {
   for (json& row : s["table"]) row["scenario"] = "pendulum";
   std::ofstream(other / "summary.json") << s.dump();
   one_line_exit_2(rapid_cli("beside " + other.string() + " " + kRerun.string(), true), "no Table I row in common");
+
+  // A cell without its algorithm would key no column and vanish from the table: refused, by index.
+  const fs::path broken = scratch.path() / "broken";
+  fs::create_directories(broken);
+  json b = summary_of(kRerun);
+  b["cells"][3].erase("algo");
+  std::ofstream(broken / "summary.json") << b.dump();
+  one_line_exit_2(rapid_cli("beside " + broken.string() + " " + kRerun.string(), true), "NOW: ");
+  one_line_exit_2(rapid_cli("beside " + kRerun.string() + " " + broken.string(), true), "cells[3] has no string \"algo\"");
+  b = summary_of(kRerun);
+  b["cells"][0]["dataset"] = 7;
+  std::ofstream(broken / "summary.json") << b.dump();
+  one_line_exit_2(rapid_cli("beside " + broken.string() + " " + kRerun.string(), true), "cells[0] has no \"dataset\"");
 }
 
 }  // namespace
