@@ -21,15 +21,17 @@ struct EpisodeTiming {
   double reset_s = 0;
 };
 
-// One episode (at most `max_decisions`) of uniform random actions; only step() is timed.
-EpisodeTiming time_random_episode(Env& env, std::uint64_t seed, int max_decisions, Rng& action_rng) {
-  Vec obs(env.obs_dim()), action(env.act_dim());
+// One episode (at most `max_decisions`); only step() is timed. With `action_rng`, of uniform random
+// actions; without, of whatever drives the ego (SUMO's driver, switched on by the caller).
+EpisodeTiming time_episode(Env& env, std::uint64_t seed, int max_decisions, Rng* action_rng) {
+  Vec obs(env.obs_dim()), action = Vec::Zero(env.act_dim());
   EpisodeTiming t;
   const auto r0 = Clock::now();
   env.reset(seed, obs);
   t.reset_s = seconds_since(r0);
   for (int d = 0; d < max_decisions; ++d) {
-    for (int i = 0; i < action.size(); ++i) action[i] = static_cast<float>(action_rng.uniform(-1.0, 1.0));
+    if (action_rng != nullptr)
+      for (int i = 0; i < action.size(); ++i) action[i] = static_cast<float>(action_rng->uniform(-1.0, 1.0));
     const auto t0 = Clock::now();
     const StepResult r = env.step(action, obs);
     t.step_s += seconds_since(t0);
@@ -76,7 +78,7 @@ EnvBenchResult bench_env(const std::string& scenario, const RunConfig& config, c
     // Alternate the order, so a drift in machine load does not favour one side.
     std::vector<double> raw;
     if (round % 2 == 1 && driving != nullptr) raw = time_raw_sumo(*driving, seed, o.max_decisions);
-    const EpisodeTiming ep = time_random_episode(*env, seed, o.max_decisions, action_rng);
+    const EpisodeTiming ep = time_episode(*env, seed, o.max_decisions, &action_rng);
     if (round % 2 == 0 && driving != nullptr) raw = time_raw_sumo(*driving, seed, ep.decisions);
     // The same number of SUMO steps as the episode took, from the same start state.
     const double raw_s = driving != nullptr ? raw[static_cast<std::size_t>(ep.decisions - 1)] : 0.0;
@@ -96,6 +98,22 @@ EnvBenchResult bench_env(const std::string& scenario, const RunConfig& config, c
   res.reset_s = median(reset_times);
   res.sumo_steps_per_s = median(sumo_rates);
   res.env_overhead_ratio = median(ratios);
+
+  // Random episodes collide within a few hundred decisions, while the road is still filling with
+  // traffic; a learning policy soon drives episodes to the horizon, where a decision costs up to
+  // three times as much (docs/performance.md, "What a run's decision costs"). A run is priced at
+  // the decision cost of whole episodes, under SUMO's driver, which does not crash. (The pendulum's
+  // random episodes are whole already.)
+  std::vector<double> full_times;
+  for (int e = 0; driving != nullptr && e < o.full_episodes; ++e) {
+    const std::uint64_t seed = stream_seed(o.seed, Stream::kEnvEval, static_cast<std::uint64_t>(e));
+    driving->set_builtin_driver(true);
+    const EpisodeTiming ep = time_episode(*env, seed, env->horizon(), nullptr);
+    driving->set_builtin_driver(false);
+    full_times.push_back(ep.step_s / static_cast<double>(ep.decisions));
+    res.full_episode_decisions += ep.decisions;
+  }
+  res.full_episode_decision_s = full_times.empty() ? res.decision_s : median(full_times);
   return res;
 }
 

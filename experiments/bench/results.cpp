@@ -57,6 +57,8 @@ nlohmann::json to_json(const BenchReport& r) {
         {"env_overhead_ratio", null_unless(s.env.env_overhead_ratio)},
         {"action_repeat", s.env.action_repeat},
         {"decision_us", s.env.decision_s * 1e6},
+        {"full_episode_decision_us", s.env.full_episode_decision_s * 1e6},
+        {"full_episode_decisions", s.env.full_episode_decisions},
         {"reset_ms", s.env.reset_s * 1e3},
         {"env_rounds", s.env.rounds},
         {"env_decisions_measured", s.env.decisions},
@@ -104,17 +106,18 @@ void print_report(std::ostream& out, const BenchReport& r) {
   out << "machine: " << r.machine.value("cpu", "") << ", " << r.machine.value("cores", 0) << " cores, load "
       << r.machine.value("load_average", "") << (r.quick ? "  (--quick: rough numbers)" : "") << "\n\n";
   out << "environment (random actions) vs SUMO stepping the same network and traffic\n";
-  out << fmt("  %-10s %14s %16s %11s %10s %9s  %s\n", "scenario", "sumo steps/s", "env decisions/s", "SUMO/dec",
-             "overhead", "reset ms", "(target <= 1.25)");
+  out << fmt("  %-10s %14s %16s %11s %10s %9s %13s  %s\n", "scenario", "sumo steps/s", "env decisions/s", "SUMO/dec",
+             "overhead", "reset ms", "whole-ep. us", "(target <= 1.25)");
   for (const ScenarioBench& s : r.scenarios) {
     if (s.env.has_sumo)
-      out << fmt("  %-10s %14.0f %16.0f %11d %10.3f %9.1f  %s\n", s.env.scenario.c_str(), s.env.sumo_steps_per_s,
+      out << fmt("  %-10s %14.0f %16.0f %11d %10.3f %9.1f %13.1f  %s\n", s.env.scenario.c_str(), s.env.sumo_steps_per_s,
                  s.env.env_decisions_per_s, s.env.action_repeat, s.env.env_overhead_ratio, s.env.reset_s * 1e3,
-                 verdict(s.env.env_overhead_ratio <= kEnvOverheadMax));
+                 s.env.full_episode_decision_s * 1e6, verdict(s.env.env_overhead_ratio <= kEnvOverheadMax));
     else
-      out << fmt("  %-10s %14s %16.0f %11s %10s %9.2f\n", s.env.scenario.c_str(), "-", s.env.env_decisions_per_s, "-",
-                 "-", s.env.reset_s * 1e3);
+      out << fmt("  %-10s %14s %16.0f %11s %10s %9.2f %13.1f\n", s.env.scenario.c_str(), "-", s.env.env_decisions_per_s,
+                 "-", "-", s.env.reset_s * 1e3, s.env.full_episode_decision_s * 1e6);
   }
+  out << "  (whole-ep. us: a decision's cost over whole episodes under SUMO's driver, what a run is priced at)\n";
   out << "\ngradient updates at the " << r.profile << " profile's " << r.update_scenario << " defaults ("
       << (r.algorithms.empty() ? "" : r.algorithms.front().shape) << ") vs Eigen GEMM on the same shapes\n";
   out << "(one thread; an update is one learning step, its GEMMs recorded as it ran; an ensemble's row is its ratio)\n";
@@ -130,8 +133,8 @@ void print_report(std::ostream& out, const BenchReport& r) {
                verdict(a.gemm_ratio >= kGemmRatioMin), threaded.c_str());
   }
   if (!r.run_costs.empty()) {
-    out << "\none run at the " << r.profile << " profile's budget, predicted from the parts above (decisions at the\n"
-        << "environment's cost, T x utd_ratio updates at the update's, one thread; evaluations at most)\n";
+    out << "\none run at the " << r.profile << " profile's budget, predicted from the parts above (decisions at a\n"
+        << "whole episode's cost, T x utd_ratio updates at the update's, one thread; evaluations at most)\n";
     out << fmt("  %-10s %-15s %9s %14s %11s %13s\n", "scenario", "algo", "T", "updates", "train min",
                "+ eval min <=");
     for (const RunCost& c : r.run_costs)

@@ -1,5 +1,6 @@
 // What one training run at a profile's budget costs each algorithm, predicted from the parts
-// `rapid bench` times alone: T decisions at the environment's decision cost (random actions),
+// `rapid bench` times alone: T decisions at the environment's decision cost over whole episodes
+// (a decision late in an episode, on a road full of traffic, costs more than an early one),
 // T × utd_ratio learning steps at the algorithm's update cost, and the evaluations' decisions.
 // It is what a grid of an expensive algorithm (rlpd-sac's 20 learning steps per decision) will
 // cost before it is run; the end-to-end ratio says how close a real run comes to such a sum.

@@ -107,7 +107,7 @@ int run_bench(const BenchOptions& o) {
     const int horizon = make_run_env(s, configs.at(s))->horizon();
     for (const bench::UpdateBenchResult& a : report.algorithms)
       report.run_costs.push_back(
-          bench::predict_run_cost(s, a.algo, config_of(a.algo, s), horizon, sb.env.decision_s, a.update_s,
+          bench::predict_run_cost(s, a.algo, config_of(a.algo, s), horizon, sb.env.full_episode_decision_s, a.update_s,
                                   a.steps_per_decision));
   }
 

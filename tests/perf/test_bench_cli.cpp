@@ -48,7 +48,8 @@ TEST(RapidBench, QuickRunWritesEveryKey) {
     ASSERT_TRUE(j["scenarios"].contains(s)) << s;
     for (const char* key : {"sumo_steps_per_s", "env_decisions_per_s", "env_overhead_ratio", "train_steps_per_s",
                             "end_to_end_ratio", "predicted_train_steps_per_s", "train_alone_decision_us",
-                            "train_in_run_decision_us", "train_alone_update_us", "train_in_run_update_us"}) {
+                            "train_in_run_decision_us", "train_alone_update_us", "train_in_run_update_us",
+                            "full_episode_decision_us", "full_episode_decisions"}) {
       ASSERT_TRUE(j["scenarios"][s].contains(key)) << s << "." << key;
       EXPECT_TRUE(j["scenarios"][s][key].is_number()) << s << "." << key;
     }
@@ -79,6 +80,15 @@ TEST(RapidBench, TheFlowProfileIsMeasuredAtItsOwnSettings) {
   EXPECT_EQ(j["scenarios"]["merge"]["action_repeat"], 1);  // the short profile's is 5
   // The short profile's merge networks are 128 wide with batches of 128.
   EXPECT_EQ(j["algorithms"]["ddpg"]["shape"], "actor 18-64-64-2, critic 20-64-64-1, batch 64");
+  // A run is priced at the decision cost of whole episodes, not of the random ones, which collide
+  // early on a road still filling with traffic: two episodes under SUMO's driver, each to the
+  // horizon of 1,500 decisions (it does not crash), and every run cost's evaluation at that price.
+  const nlohmann::json& merge = j["scenarios"]["merge"];
+  EXPECT_EQ(merge["full_episode_decisions"], 2 * 1500);
+  const double whole_s = merge["full_episode_decision_us"].get<double>() * 1e-6;
+  ASSERT_FALSE(j["run_costs"].empty());
+  for (const nlohmann::json& c : j["run_costs"])
+    EXPECT_NEAR(c["eval_s_max"].get<double>(), c["eval_decisions_max"].get<double>() * whole_s, 1e-9) << c["algo"];
 }
 
 // The update's GEMMs are recorded as they run, so each algorithm's count is what its update rule
