@@ -12,6 +12,13 @@
 namespace rapid {
 
 namespace {
+// Every process that links the networks plans Eigen's products for the same caches, set here
+// before main() so that no product runs first (core/tensor.hpp says why).
+[[maybe_unused]] const bool kProductsPlanned = [] {
+  Eigen::setCpuCacheSizes(kPlannedL1CacheBytes, kPlannedL2CacheBytes, kPlannedL3CacheBytes);
+  return true;
+}();
+
 constexpr float kLayerNormEps = 1e-5f;
 constexpr char kMagic[8] = {'R', 'A', 'P', 'I', 'D', 'M', 'L', 'P'};
 // Format 2 added the update count after the version; format 1 files still load.

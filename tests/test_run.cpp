@@ -392,18 +392,21 @@ TEST(RapidRun, DdpgLearnsPendulum) {
 // What the published RLPD (SAC, 10 critics, UTD 20) and TD3+BC are expected to reach on the
 // swing-up from each prior dataset, and why: half of every batch from a pendulum dataset of a DDPG
 // reference of 4,000 decisions (`medium`: its T/2 actor, episode returns about −1,200, no swing-up
-// in the data; `final`: its last actor, about −490, swinging up), 20,000 decisions, seeds no other
-// test uses. Published references: SAC and TD3 on Pendulum-v1 reach about −150 at 20,000 steps
-// (rl-baselines3-zoo's benchmark), and RLPD learns from data of any quality because nothing in
-// its loss ties the policy to the data (Ball et al. 2023, §5): so rlpd-sac reaches −200 from
-// `medium`. TD3+BC's imitation term at α = 2.5 holds the policy near the data's actions (Fujimoto
-// & Gu 2021, Table 1: on the `random` datasets, whose behaviour never solves a task, TD3+BC scores
-// near that behaviour): from `final`, whose actions swing up, it reaches −200; from `medium` it
-// stays near the data, below −600. That last case is the method's limit, kept here as documented
-// behaviour: with the backbone's LayerNorm critic (before #41) it still reached −254 from
-// `medium`; TD3_BC's own critic has no LayerNorm, and with it the Q term never outweighs the
-// imitation. rlpd-sac takes a few minutes: twenty ensemble steps per decision. The Q-filter
-// (Nair et al. 2018, §IV-C) drops the imitation of every prior action the critic rates below the
+// in the data; `final`: its last actor, swinging up: about −180 since the exact-sqrt build of
+// 2026-12-02, −490 before), 20,000 decisions, seeds no other test uses. Published references:
+// SAC and TD3 on Pendulum-v1 reach about −150 at 20,000 steps (rl-baselines3-zoo's benchmark),
+// and RLPD learns from data of any quality because nothing in its loss ties the policy to the
+// data (Ball et al. 2023, §5): so rlpd-sac reaches −200 from `medium`. TD3+BC's imitation term
+// at α = 2.5 holds the policy near the data's actions (Fujimoto & Gu 2021, Table 1: on the
+// `random` datasets, whose behaviour never solves a task, TD3+BC scores near that behaviour):
+// from `medium` it stays near the data, below −600. That case is the method's limit, kept here as
+// documented behaviour: with the backbone's LayerNorm critic (before #41) it still reached −254
+// from `medium`; TD3_BC's own critic has no LayerNorm, and with it the Q term never outweighs the
+// imitation. From `final`, whose actions swing up, it swings up too, above −300: not always to
+// −200, since of 22 runs (seeds 72 and 80-89, on the datasets of the builds before and after
+// 2026-12-02) all ended at −137 to −158 but three of the later build's, at −265 to −279 (a
+// swing-up missed from a few starts). rlpd-sac takes a few minutes: twenty ensemble steps per
+// decision. The Q-filter (Nair et al. 2018, §IV-C) drops the imitation of every prior action the critic rates below the
 // actor's, so that the policy can surpass poor demonstrations: from `medium` it reaches −200
 // (expected before it was first run; it measured −136 on seed 73, CoL-prior −145 there: the
 // swing-up is easy enough that this checks learning, not the filter, which QFilter in
@@ -412,7 +415,8 @@ struct PendulumCase {
   const char* algo;
   const char* dataset;
   int seed;
-  bool swings_up;  // final return ≥ −200; otherwise held near the data: below −600
+  bool swings_up;  // final return ≥ swing_up_line; otherwise held near the data: below −600
+  double swing_up_line = -200.0;
 };
 
 // A failing case names itself in GoogleTest's output instead of printing its bytes.
@@ -423,7 +427,7 @@ void PrintTo(const PendulumCase& c, std::ostream* os) {
 class PublishedBaselineOnPendulum : public ::testing::TestWithParam<PendulumCase> {};
 
 TEST_P(PublishedBaselineOnPendulum, ReachesWhatTheMethodReachesFromItsData) {
-  const auto [algo, dataset, seed, swings_up] = GetParam();
+  const auto [algo, dataset, seed, swings_up, swing_up_line] = GetParam();
   ::setenv("OMP_NUM_THREADS", "1", 1);  // CTest runs tests side by side
   rapid::testing::ScratchDir dir;
   ASSERT_EQ(rapid_cli("dataset build --scenario pendulum --dir " + dir.file("d") +
@@ -435,13 +439,13 @@ TEST_P(PublishedBaselineOnPendulum, ReachesWhatTheMethodReachesFromItsData) {
   EXPECT_EQ(r.contains("recipe"), !find_algorithm(algo).recipe.empty()) << "a published recipe's keys were filled";
   EXPECT_LT(r["eval"][0]["return_mean"].get<double>(), -800.0) << "the untrained policy is poor";
   const double final_return = r["final"]["return_mean"].get<double>();
-  if (swings_up) EXPECT_GE(final_return, -200.0) << algo << " on " << dataset;
+  if (swings_up) EXPECT_GE(final_return, swing_up_line) << algo << " on " << dataset;
   else EXPECT_LT(final_return, -600.0) << algo << " on " << dataset << " was expected to stay near its data";
 }
 
 INSTANTIATE_TEST_SUITE_P(RapidRun, PublishedBaselineOnPendulum,
                          ::testing::Values(PendulumCase{"rlpd-sac", "medium", 71, true},
-                                           PendulumCase{"td3-bc", "final", 72, true},
+                                           PendulumCase{"td3-bc", "final", 72, true, -300.0},
                                            PendulumCase{"td3-bc", "medium", 72, false},
                                            PendulumCase{"q-filter", "medium", 73, true}),
                          [](const auto& info) {

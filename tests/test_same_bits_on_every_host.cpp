@@ -1,0 +1,55 @@
+// Same seed, same bits on every machine that runs the binary: the two things Eigen would take from
+// the host (core/tensor.hpp) are taken from the build instead. Both fail on a host whose CPU
+// differs from the planned one if the guard is removed: a fast-math sqrt is this CPU's rsqrtps
+// table refined once, and Eigen's own cache sizes are this host's.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "core/mlp.hpp"
+#include "core/tensor.hpp"
+
+namespace rapid {
+namespace {
+
+// Values spread over the range Adam's second moments and LayerNorm's variances take.
+Eigen::ArrayXf spread(int n) {
+  Eigen::ArrayXf x(n);
+  for (int i = 0; i < n; ++i) x[i] = std::pow(10.0f, -12.0f + 24.0f * static_cast<float>(i) / static_cast<float>(n));
+  return x;
+}
+
+int mismatched_bits(const Eigen::ArrayXf& got, const Eigen::ArrayXf& want) {
+  int n = 0;
+  for (Eigen::Index i = 0; i < got.size(); ++i) n += std::memcmp(&got[i], &want[i], sizeof(float)) != 0;
+  return n;
+}
+
+TEST(SameBitsOnEveryHost, AFloatArraysSqrtIsTheCorrectlyRoundedOne) {
+  const Eigen::ArrayXf x = spread(100000);
+  Eigen::ArrayXf exact(x.size());
+  for (Eigen::Index i = 0; i < x.size(); ++i) exact[i] = std::sqrt(x[i]);
+  // Adam's denominator, vectorised as in core/adam.cpp.
+  EXPECT_EQ(mismatched_bits(x.sqrt(), exact), 0)
+      << "Eigen's sqrt is an estimate refined once (EIGEN_FAST_MATH), whose bits depend on the CPU";
+}
+
+TEST(SameBitsOnEveryHost, AFloatArraysRsqrtIsOneOverTheCorrectlyRoundedSqrt) {
+  const Eigen::ArrayXf x = spread(100000);
+  Eigen::ArrayXf exact(x.size());
+  for (Eigen::Index i = 0; i < x.size(); ++i) exact[i] = 1.0f / std::sqrt(x[i]);
+  // LayerNorm's 1/σ, vectorised as in core/mlp.cpp.
+  EXPECT_EQ(mismatched_bits(x.rsqrt(), exact), 0)
+      << "Eigen's rsqrt is an estimate refined once (EIGEN_FAST_MATH), whose bits depend on the CPU";
+}
+
+TEST(SameBitsOnEveryHost, ProductsArePlannedForTheBuildsCachesNotTheHosts) {
+  Mlp net = Mlp::make(4, {8}, 1, true, false);  // links core/mlp.cpp, which plans them
+  EXPECT_EQ(Eigen::l1CacheSize(), kPlannedL1CacheBytes);
+  EXPECT_EQ(Eigen::l2CacheSize(), kPlannedL2CacheBytes);
+  EXPECT_EQ(Eigen::l3CacheSize(), kPlannedL3CacheBytes);
+}
+
+}  // namespace
+}  // namespace rapid
