@@ -406,11 +406,11 @@ TEST(RapidRun, DdpgLearnsPendulum) {
 // −200, since of 22 runs (seeds 72 and 80-89, on the datasets of the builds before and after
 // 2026-12-02) all ended at −137 to −158 but three of the later build's, at −265 to −279 (a
 // swing-up missed from a few starts). rlpd-sac takes a few minutes: twenty ensemble steps per
-// decision. The Q-filter (Nair et al. 2018, §IV-C) drops the imitation of every prior action the critic rates below the
-// actor's, so that the policy can surpass poor demonstrations: from `medium` it reaches −200
-// (expected before it was first run; it measured −136 on seed 73, CoL-prior −145 there: the
-// swing-up is easy enough that this checks learning, not the filter, which QFilter in
-// tests/test_algos.cpp checks).
+// decision. The Q-filter (Nair et al. 2018, §IV-C) drops the imitation of every prior action the
+// critic rates below the actor's, so that the policy can surpass poor demonstrations: from
+// `medium` it reaches −200 (expected before it was first run; it measured −136 on seed 73,
+// CoL-prior −145 there: the swing-up is easy enough that this checks learning, not the filter,
+// which QFilter in tests/test_algos.cpp checks).
 struct PendulumCase {
   const char* algo;
   const char* dataset;
