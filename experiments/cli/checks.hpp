@@ -4,6 +4,8 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -33,6 +35,24 @@ inline CLI::Validator count_validator(int min = 1) {
         return "must be an integer of at least " + std::to_string(min) + ", got '" + s + "'";
       },
       "COUNT");
+}
+
+// The futility threshold of --decide's looks: a number in [0, 1). (CLI11's Range lets NaN through,
+// and "conditional power below nan" froze nothing while claiming to.)
+inline CLI::Validator futility_validator() {
+  return CLI::Validator(
+      [](std::string& s) -> std::string {
+        double x = 0.0;
+        std::size_t used = 0;
+        try {
+          x = std::stod(s, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == s.size() && !s.empty() && std::isfinite(x) && x >= 0.0 && x < 1.0) return "";
+        return "must be a number in [0, 1), got '" + s + "'";
+      },
+      "P");
 }
 
 // "a, b, c or d": the names a help text offers, read from the registry that defines them

@@ -2,7 +2,8 @@
 // both rules of docs/decisions.md §Adaptive seeds, freeze (with futility) and redecide (the rule
 // before issue #42), at no new compute: what each would have spent and decided, beside what the
 // folder's own run did. Reads a sweep folder's records, or a committed reports folder's
-// summary.json and runs.csv (results/*, whose records are not in git). Writes FOLDER/decide-replay.md.
+// summary.json and runs.csv (results/*, whose records are not in git). Prints the report; writes it
+// only to --out's file (never into FOLDER unasked, issue #67).
 // With --run-times SWEEP it also prices every rule's runs per scenario at SWEEP's measured run times,
 // with and without the evaluation budget (issue #42's cost of a decided answer).
 #include <algorithm>
@@ -10,8 +11,10 @@
 
 #include "core/atomic_file.hpp"
 #include "core/json_input.hpp"
+#include "experiments/cli/checks.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
+#include "experiments/cli/output_folder.hpp"
 #include "experiments/report/decide_replay.hpp"
 #include "experiments/report/decisions.hpp"
 #include "experiments/report/eval_budget.hpp"
@@ -29,6 +32,7 @@ struct ReplayOptions {
   std::string folder;
   double futility = 0.10;
   std::string run_times;  // a sweep on the same protocol whose records price the runs per scenario
+  std::string out;        // where to write the report too (issue #67: never into FOLDER unasked)
 };
 
 // Per scenario, a run's cost at the sweep's evaluation and the evaluation budget's gain
@@ -125,7 +129,7 @@ int replay_decide_command(const ReplayOptions& o) {
     }
   }
   const std::string md = decide_replay_markdown(report);
-  write_file_atomic((dir / "decide-replay.md").string(), md);
+  if (!o.out.empty()) write_file_atomic(o.out, md);
   std::cout << md;
   return kExitOk;
 }
@@ -138,11 +142,16 @@ Command add_replay_decide_command(CLI::App& parent) {
       "replay-decide", "Replay a --decide folder's looks on its own per-seed results under both rules (freeze with "
                        "futility, and the rule before it): runs spent and verdicts, nothing run");
   sub->add_option("folder", o->folder, "a --decide sweep folder, or its committed reports folder")->required();
-  sub->add_option("--futility", o->futility, "as for rapid sweep --decide (default 0.1)")->check(CLI::Range(0.0, 0.99));
+  sub->add_option("--futility", o->futility, "as for rapid sweep --decide (default 0.1)")->check(futility_validator());
   sub->add_option("--run-times", o->run_times,
                   "a sweep on the folder's protocol whose records price each scenario's runs, at the folder's "
                   "evaluation and with rapid eval-budget's recommendation (core-hours and shares of the fixed design)");
-  return {sub, [o] { return replay_decide_command(*o); }};
+  const CLI::Option* out =
+      sub->add_option("--out", o->out, "also write the report to this file (default: print it only)");
+  return {sub, [o, out] {
+            if (out->count() > 0) check_output_file("--out", o->out);
+            return replay_decide_command(*o);
+          }};
 }
 
 }  // namespace rapid

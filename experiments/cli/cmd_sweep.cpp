@@ -403,7 +403,7 @@ Command add_sweep_command(CLI::App& parent) {
   sub->add_option("--futility", o->decide_settings.futility,
                   "with --decide: freeze a comparison whose conditional power at --max-seeds is below this (default 0.1; "
                   "0: never)")
-      ->check(CLI::Range(0.0, 0.99));
+      ->check(futility_validator());
   sub->add_flag("--no-summary", o->no_summary, "do not refresh the reports (rapid summarize) at the end");
   sub->add_flag("--no-animations", o->no_animations, "refresh the reports without the animations");
   sub->add_option("--backend", o->backend, "where jobs run: local (this machine) or slurm (submit job arrays)");

@@ -23,7 +23,7 @@ int decide_looks_max(int initial_seeds, const DecideSettings& settings) {
   return 1 + (room + settings.block - 1) / settings.block;
 }
 
-double probability_decided(const Comparison& c, int max_seeds, double level, double theta) {
+double probability_decided(const Comparison& c, int max_seeds, double level, double theta, bool theta_uncertain) {
   if (c.xs.empty() || c.ys.empty()) return 0.0;  // nothing to compare: more seeds bring nothing either
   const double n = c.paired ? static_cast<double>(c.xs.size()) : 0.5 * static_cast<double>(c.xs.size() + c.ys.size());
   if (!(std::isfinite(c.d.se) && c.d.se > 0.0)) return std::numeric_limits<double>::quiet_NaN();
@@ -36,7 +36,10 @@ double probability_decided(const Comparison& c, int max_seeds, double level, dou
   const double df = c.paired ? big_n - 1.0 : 2.0 * big_n - 2.0;
   // The estimate at N: today's n seeds' mean difference and N − n new ones centred on θ.
   const double mean = std::abs((n * c.d.diff + (big_n - n) * theta) / big_n);
-  const double spread = std::sqrt((big_n - n) * sigma2) / big_n;
+  // The seeds to come vary around θ; with `theta_uncertain`, θ itself is today's estimate known
+  // only to its standard error, so their mean varies by that much more (predictive power).
+  const double theta_var = theta_uncertain ? sigma2 / n : 0.0;
+  const double spread = std::sqrt((big_n - n) * sigma2 + (big_n - n) * (big_n - n) * theta_var) / big_n;
   const double reject_difference = student_t_quantile(1.0 - level / 2.0, df) * se_max;  // |D| beyond: a difference
   const double reject_equivalence =                                                     // |D| below: equivalent
       c.delta ? *c.delta - student_t_quantile(1.0 - level, df) * se_max : -1.0;
@@ -52,9 +55,12 @@ double probability_decided(const Comparison& c, int max_seeds, double level, dou
 }
 
 double futility_power(const Comparison& c, int max_seeds, double level) {
-  if (!c.delta) return probability_decided(c, max_seeds, level, c.d.diff);
-  const double toward = c.d.diff < 0 ? -*c.delta : *c.delta;
-  return std::max(probability_decided(c, max_seeds, level, toward), probability_decided(c, max_seeds, level, 0.0));
+  double best = probability_decided(c, max_seeds, level, c.d.diff);
+  if (c.delta) {  // issue #66: the observed effect too, or a large effect with a large spread looks futile
+    for (const double theta : {0.0, *c.delta, -*c.delta}) best = std::max(best, probability_decided(c, max_seeds, level, theta));
+    best = std::max(best, probability_decided(c, max_seeds, level, c.d.diff, true));
+  }
+  return best;
 }
 
 namespace {

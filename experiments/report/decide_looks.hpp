@@ -45,11 +45,15 @@ int decide_looks_max(int initial_seeds, const DecideSettings& settings);
 // given the seeds it has and a true difference `theta` for the seeds to come: conditional power
 // (normal approximation for the estimate, t quantiles for the tests). At max_seeds already: 1 when
 // decided, 0 when not. 0 when a side has no values; NaN when the spread is unknown (< 2 seeds).
-double probability_decided(const Comparison& c, int max_seeds, double level, double theta);
+// With `theta_uncertain`, θ is taken as known only to today's standard error (the predictive power,
+// averaged over θ ~ N(theta, se²)).
+double probability_decided(const Comparison& c, int max_seeds, double level, double theta, bool theta_uncertain = false);
 
-// The futility rule's conditional power (docs/decisions.md §Futility): the larger of
-// probability_decided with a true difference of δ in the direction of today's estimate and with
-// none; without a δ (a paired BC-loss comparison), at today's estimate.
+// The futility rule's conditional power (docs/decisions.md §Futility): the largest of
+// probability_decided with the seeds to come centred on today's estimate, on none, and on a true
+// difference of +δ and of −δ; without a δ (a paired BC-loss comparison), on today's estimate alone.
+// (Before issue #66 the estimate itself was not among them, so a large effect with a large spread
+// was frozen as futile where 30 seeds then decided it.)
 double futility_power(const Comparison& c, int max_seeds, double level);
 
 // Where the looks are.

@@ -1,6 +1,7 @@
 #include "experiments/report/decide_simulation.hpp"
 
 #include <algorithm>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -102,6 +103,11 @@ DecideSimulation simulate_decide(const Summary& observed, int initial_seeds, con
     tally(decide_claims(with_seeds(observed, draws, at_initial), single), at_initial, wrong, sim.fixed_initial);
     const Decisions fixed_max = decide_claims(with_seeds(observed, draws, at_max), single);
     tally(fixed_max, at_max, wrong, sim.fixed_max);
+    // The comparisons all max_seeds seeds decide at the looks' own level α/K: what futility can
+    // lose (a decision at α that α/K misses is the looks' price, not futility's).
+    std::set<std::string> decided_of;
+    for (const Comparison& c : decide_claims(with_seeds(observed, draws, at_max), sequential).comparisons)
+      if (c.outcome != ComparisonOutcome::kUndecided) decided_of.insert(comparison_key(c));
 
     for (DesignOutcome* design : {&sim.adaptive, &sim.redecide}) {
       DecideSettings rule = plan;
@@ -122,13 +128,17 @@ DecideSimulation simulate_decide(const Summary& observed, int initial_seeds, con
         if (c.frozen.rfind("futile", 0) == 0) {
           ++design->futile;
           ++design->futile_of[key];
+          design->lost += decided_of.count(key);
         }
+      design->decided_by_max += static_cast<double>(decided_of.size());
     }
   }
   for (DesignOutcome* o : {&sim.fixed_initial, &sim.fixed_max, &sim.adaptive, &sim.redecide}) {
     o->runs /= experiments;
     o->looks /= experiments;
     o->futile /= experiments;
+    o->lost /= experiments;
+    o->decided_by_max /= experiments;
   }
   return sim;
 }
@@ -154,14 +164,13 @@ std::string decide_simulation_markdown(const DecideSimulation& sim, const std::s
   for (std::size_t i = 0; i < claims.size(); ++i) md << " --- |";
   md << "\n";
   for (const DesignOutcome* d : designs) {
-    md << "| " << d->name << " | " << fixed(d->runs, 1) << " | " << fixed(100.0 * d->runs / sim.fixed_max.runs, 0)
-       << " % |";
+    md << "| " << d->name << " | " << fixed(d->runs, 1) << " | " << share_text(d->runs, sim.fixed_max.runs, 0) << " |";
     for (const std::string& claim : claims) {
       std::string cell;
       const auto verdicts = d->verdicts.find(claim);
       if (verdicts != d->verdicts.end())
         for (const auto& [verdict, count] : verdicts->second)
-          cell += (cell.empty() ? "" : ", ") + verdict + " " + fixed(100.0 * count / n, 0) + " %";
+          cell += (cell.empty() ? "" : ", ") + verdict + " " + share_text(count, n, 0);
       md << " " << cell << " |";
     }
     md << "\n";
@@ -169,9 +178,14 @@ std::string decide_simulation_markdown(const DecideSimulation& sim, const std::s
   md << "\n";
   for (const DesignOutcome* d : {&sim.adaptive, &sim.redecide})
     md << d->name << ": " << fixed(d->looks, 2) << " looks on average, every claim with the verdict of the fixed "
-       << sim.plan.max_seeds << "-seed design in " << fixed(100.0 * d->same_as_fixed_max / n, 1)
-       << " % of the experiments, at " << fixed(100.0 * d->runs / sim.fixed_max.runs, 0) << " % of its runs"
-       << (d == &sim.adaptive ? "; " + fixed(d->futile, 1) + " comparisons frozen as futile per experiment" : std::string())
+       << sim.plan.max_seeds << "-seed design in " << share_text(d->same_as_fixed_max, n)
+       << " of the experiments, at " << share_text(d->runs, sim.fixed_max.runs, 0) << " of its runs"
+       << (d == &sim.adaptive ? "; " + fixed(d->futile, 1) + " comparisons frozen as futile per experiment, " +
+                                     fixed(d->lost, 2) + " of them decided by all " +
+                                     std::to_string(sim.plan.max_seeds) + " seeds at the looks' level α/K (" +
+                                     share_text(d->lost, d->decided_by_max) + " of its " +
+                                     fixed(d->decided_by_max, 1) + " decided comparisons lost to futility)"
+                              : std::string())
        << ".\n\n";
   md << "The resampled seeds are this sweep's: where its cells truly differ by little, every design "
         "sees the same small differences; the simulation measures the designs' cost and agreement, not the claims' truth.\n";

@@ -30,6 +30,8 @@ struct DesignOutcome {
   double looks = 0;           // mean looks
   int same_as_fixed_max = 0;  // experiments where it gave every claim the fixed maximum's verdict
   double futile = 0;          // mean comparisons frozen as futile
+  double lost = 0;            // mean comparisons frozen as futile that all max_seeds seeds decide at α/K (same seeds)
+  double decided_by_max = 0;  // mean comparisons all max_seeds seeds decide at α/K: `lost`'s denominator
   std::map<std::string, int> futile_of;  // comparison_key → experiments in which it was frozen futile
   std::map<std::string, std::map<std::string, int>> outcomes_of;  // comparison_key → outcome → experiments
 };

@@ -19,6 +19,11 @@ std::string fixed(double x, int decimals) {
   return s;
 }
 
+std::string share_text(double part, double whole, int decimals) {
+  if (!(std::isfinite(part) && std::isfinite(whole)) || whole == 0.0) return "—";
+  return fixed(100.0 * part / whole, decimals) + " %";
+}
+
 std::string short_number(std::optional<double> x) {
   if (!x || std::isnan(*x)) return "—";
   char buf[64];

@@ -14,6 +14,9 @@ std::string short_number(std::optional<double> x);
 // What a run cost, as table.md and report.html spell it: the median wall time in seconds and the
 // [fastest, slowest], a tenth below ten seconds and whole seconds above ("25 [7.5, 138]").
 std::string run_cost_text(double median_s, double min_s, double max_s);
+// A share as a percentage with `decimals` ("42.0 %"); "—" when `whole` is zero or either is not
+// finite, so no report prints "nan %" or "inf %" (issue #67).
+std::string share_text(double part, double whole, int decimals = 1);
 // Shortest text that reads back as the same double (CSV, machine use); empty for nullopt/NaN.
 std::string exact_number(std::optional<double> x);
 

@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
+#include <map>
 
 #include "tests/cli_runner.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
@@ -108,6 +110,54 @@ TEST_F(ReportCliTest, BadInputExitsTwoWithOneLine) {
   EXPECT_NE(out.text.find("--rtol"), std::string::npos) << out.text;
   EXPECT_EQ(rapid_cli("summarize --help").exit_code, 0);
   EXPECT_EQ(rapid_cli("diff --help").exit_code, 0);
+}
+
+// simulate-decide and replay-decide read a folder and print what they find; they write a file only
+// where --out says (issue #67: the committed decide-simulation.md was overwritten by a run that
+// found 0 cells, with "-nan %" shares). Nothing to simulate is bad input; so is a NaN futility.
+TEST_F(ReportCliTest, DecideAnalysesPrintAndWriteOnlyWhereAsked) {
+  const std::filesystem::path committed = std::filesystem::path(RAPID_SOURCE_DIR) / "results" / "paper-flow-decided";
+  const auto listing = [](const std::filesystem::path& dir) {
+    std::map<std::string, std::uintmax_t> files;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) files[e.path().filename().string()] = e.file_size();
+    return files;
+  };
+  const auto before = listing(committed);
+  auto out = rapid_cli("simulate-decide " + committed.string() + " --experiments 2", true);
+  ASSERT_EQ(out.exit_code, 0) << out.text;
+  EXPECT_NE(out.text.find("cells seeds drawn"), std::string::npos) << out.text;
+  EXPECT_NE(out.text.find("decided comparisons lost to futility"), std::string::npos) << out.text;
+  EXPECT_EQ(out.text.find("nan"), std::string::npos) << out.text;
+  EXPECT_EQ(out.text.find("inf %"), std::string::npos) << out.text;
+  out = rapid_cli("replay-decide " + committed.string(), true);
+  ASSERT_EQ(out.exit_code, 0) << out.text;
+  EXPECT_EQ(listing(committed), before);  // the committed folder as it was
+  const std::filesystem::path md = scratch.path() / "sim.md";
+  out = rapid_cli("simulate-decide " + committed.string() + " --experiments 2 --out " + md.string(), true);
+  ASSERT_EQ(out.exit_code, 0) << out.text;
+  EXPECT_TRUE(std::filesystem::exists(md));
+
+  // A sweep folder with no ok seed: nothing to simulate, said in one line, nothing written.
+  const std::filesystem::path empty = scratch.path() / "empty";
+  report_test::write_grid(empty, report_test::make_grid("empty", {"pendulum"}, {"initial"}, {"rapid-rl", "ddpg"}, {0, 1}));
+  std::filesystem::create_directories(empty / "jobs");
+  out = rapid_cli("simulate-decide " + empty.string() + " --experiments 2 --out " + (scratch.path() / "e.md").string(), true);
+  EXPECT_EQ(out.exit_code, 2) << out.text;
+  EXPECT_NE(out.text.find("no cell with an ok seed"), std::string::npos) << out.text;
+  EXPECT_EQ(std::count(out.text.begin(), out.text.end(), '\n'), 1) << out.text;
+  EXPECT_FALSE(std::filesystem::exists(scratch.path() / "e.md"));
+
+  for (const std::string bad : {"nan", "-0.1", "1", "inf", "0.1x", ""}) {
+    for (const std::string cmd : {"simulate-decide " + sweep.string(), "replay-decide " + committed.string(),
+                                  "sweep " + (sweep / "grid.json").string() + " --decide"}) {
+      out = rapid_cli(cmd + " --futility '" + bad + "'", true);
+      EXPECT_EQ(out.exit_code, 2) << cmd << " --futility " << bad << ": " << out.text;
+      EXPECT_NE(out.text.find("--futility"), std::string::npos) << out.text;
+    }
+  }
+  out = rapid_cli("simulate-decide " + sweep.string() + " --out ''", true);
+  EXPECT_EQ(out.exit_code, 2) << out.text;
+  EXPECT_EQ(listing(committed), before);
 }
 
 // --write-baseline replaces only a regular file, in a folder it can write, and finds out before

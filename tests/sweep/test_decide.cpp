@@ -68,9 +68,11 @@ TEST(Decide, AddsBlocksOfSeedsToUndecidedCellsAndResumesWithoutRerunning) {
 
   // The same sweep's seeds resampled: the four designs, from the grid's own two seeds.
   const Result sim =
-      run_rapid("simulate-decide " + sweep.string() + " --experiments 20 --max-seeds 4 --block 1 --futility 0");
+      run_rapid("simulate-decide " + sweep.string() + " --experiments 20 --max-seeds 4 --block 1 --futility 0 --out " +
+                (dir.path() / "sim.md").string());
   ASSERT_EQ(sim.exit_code, 0) << sim.output;
-  std::ifstream in(sweep / "decide-simulation.md");
+  EXPECT_FALSE(fs::exists(sweep / "decide-simulation.md"));  // nothing written into the folder it reads
+  std::ifstream in(dir.path() / "sim.md");
   const std::string md((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(md.find("| fixed, 2 seeds | 4.0 | 50 % |"), std::string::npos) << md;  // 2 cells × 2 seeds
   EXPECT_NE(md.find("| fixed, 4 seeds | 8.0 | 100 % |"), std::string::npos) << md;
@@ -84,7 +86,7 @@ TEST(Decide, AddsBlocksOfSeedsToUndecidedCellsAndResumesWithoutRerunning) {
             std::string::npos)
       << replay.output;
   EXPECT_NE(replay.output.find("| redecide | "), std::string::npos) << replay.output;
-  EXPECT_TRUE(fs::exists(sweep / "decide-replay.md"));
+  EXPECT_FALSE(fs::exists(sweep / "decide-replay.md"));  // printed; written only where --out says
   // Priced at another sweep's measured run times (same scenario, a final evaluation to measure the
   // episodes' cost from): every rule's runs per scenario, the fixed design at 100 %.
   const fs::path timed = dir.path() / "timed";
@@ -116,7 +118,7 @@ TEST(Decide, AddsBlocksOfSeedsToUndecidedCellsAndResumesWithoutRerunning) {
   EXPECT_NE(negative.output.find("--seed: must be a non-negative integer, got '-1'"), std::string::npos) << negative.output;
   const Result not_a_sweep = run_rapid("simulate-decide " + dir.path().string());
   EXPECT_EQ(not_a_sweep.exit_code, 2);
-  EXPECT_NE(not_a_sweep.output.find("SWEEP_DIR: "), std::string::npos) << not_a_sweep.output;
+  EXPECT_NE(not_a_sweep.output.find("FOLDER: "), std::string::npos) << not_a_sweep.output;
 
   g["seeds"] = {0, 1, 2};
   write_json(dir.path() / "three.json", g);
