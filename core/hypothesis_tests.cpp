@@ -138,6 +138,21 @@ std::vector<bool> holm_rejections(std::span<const double> p_values, double alpha
   return rejected;
 }
 
+std::vector<double> holm_adjusted(std::span<const double> p_values) {
+  const std::size_t m = p_values.size();
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < m; ++i)
+    if (!std::isnan(p_values[i])) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return p_values[a] < p_values[b]; });
+  std::vector<double> adjusted(p_values.begin(), p_values.end());
+  double running = 0.0;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    running = std::max(running, std::min(1.0, p_values[order[k]] * static_cast<double>(m - k)));
+    adjusted[order[k]] = running;
+  }
+  return adjusted;
+}
+
 int seeds_needed(double sd, double effect, double alpha, double power) {
   if (!(effect > 0.0) || !(sd >= 0.0) || !(alpha > 0.0 && alpha < 1.0) || !(power > 0.0 && power < 1.0))
     throw std::invalid_argument("seeds_needed: needs sd ≥ 0, effect > 0, alpha and power in (0, 1)");

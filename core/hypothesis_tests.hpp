@@ -42,6 +42,11 @@ double p_equivalence(const MeanDifference& d, double delta);
 // p-values are never rejected (and still count in the family).
 std::vector<bool> holm_rejections(std::span<const double> p_values, double alpha);
 
+// Holm's adjusted p-values: the smallest family-wise level at which each hypothesis is rejected
+// (p_(k) · (m − k + 1), made non-decreasing in the sorted order, at most 1); rejected at α exactly
+// when holm_rejections says so. NaN stays NaN.
+std::vector<double> holm_adjusted(std::span<const double> p_values);
+
 // Seeds per algorithm with which a two-sided test at level `alpha` detects a true difference of
 // `effect` with probability `power`, at standard deviation `sd` on each side (the normal
 // approximation n = 2·(z_{1−α/2} + z_power)²·sd²/effect², rounded up, at least 2).

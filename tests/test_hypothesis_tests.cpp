@@ -56,6 +56,25 @@ TEST(HypothesisTests, HolmRejectsStepDown) {
   EXPECT_TRUE(holm_rejections(std::vector<double>{}, 0.05).empty());
 }
 
+// Adjusted p-values agree with the step-down rejections at every level, and with the textbook
+// values (sorted 0.005, 0.01, 0.03, 0.04 → 0.02, 0.03, 0.06, 0.06).
+TEST(HypothesisTests, HolmAdjustedPValuesMatchTheRejections) {
+  const std::vector<double> p{0.01, 0.04, 0.03, 0.005};
+  const std::vector<double> adjusted = holm_adjusted(p);
+  EXPECT_NEAR(adjusted[3], 0.02, 1e-12);
+  EXPECT_NEAR(adjusted[0], 0.03, 1e-12);
+  EXPECT_NEAR(adjusted[2], 0.06, 1e-12);
+  EXPECT_NEAR(adjusted[1], 0.06, 1e-12);
+  for (const double alpha : {0.01, 0.02, 0.025, 0.03, 0.05, 0.06, 0.1}) {
+    const std::vector<bool> rejected = holm_rejections(p, alpha);
+    for (std::size_t i = 0; i < p.size(); ++i) EXPECT_EQ(rejected[i], adjusted[i] <= alpha) << alpha << " " << i;
+  }
+  const std::vector<double> with_nan = holm_adjusted(std::vector<double>{NAN, 0.4, 0.9});
+  EXPECT_TRUE(std::isnan(with_nan[0]));
+  EXPECT_NEAR(with_nan[1], 1.0, 1e-12);  // 0.4 · 3 capped at 1
+  EXPECT_NEAR(with_nan[2], 1.0, 1e-12);
+}
+
 // No true difference: the two-sided test rejects in α of the experiments, and a Holm family of
 // 12 such tests rejects anything in at most α of them.
 TEST(HypothesisTests, FalseRejectionsAreAtMostAlphaBySimulation) {

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "algos/registry.hpp"
+#include "core/hypothesis_tests.hpp"
 #include "core/printable.hpp"
 #include "experiments/report/adaptive_seeds.hpp"
 #include "experiments/report/claims.hpp"
@@ -125,11 +126,65 @@ std::string baseline_decisions_markdown(const Summary& s) {
   return out.str();
 }
 
+// Text for a Markdown table cell or line: no markup, no line break, no column break (a grid's own
+// claim statement is the user's text).
+std::string plain_cell(std::string text) {
+  for (char& ch : text)
+    if (ch == '\n' || ch == '\r' || ch == '|') ch = ' ';
+  std::string out;
+  for (const char ch : text) {
+    if (ch == '<' || ch == '>' || ch == '*' || ch == '_' || ch == '`' || ch == '[' || ch == ']' || ch == '#') out += '\\';
+    out += ch;
+  }
+  return out;
+}
+
+// The aggregate claims (decide_aggregate_claims): each contrast's estimate, interval, both p-values
+// raw and Holm-adjusted, and its outcome. First in claims.md: they are the registered question.
+std::string aggregate_decisions_markdown(const Summary& s) {
+  if (!s.aggregate_decisions) return "";
+  const Decisions& d = *s.aggregate_decisions;
+  const std::vector<AggregateClaimSpec> specs = aggregate_claims_of(s);
+  std::vector<double> p;
+  for (const Comparison& c : d.comparisons) {
+    p.push_back(c.p_difference);
+    p.push_back(c.p_equivalence);
+  }
+  const std::vector<double> adjusted = holm_adjusted(p);
+  const bool registered = std::any_of(specs.begin(), specs.end(), [](const AggregateClaimSpec& a) { return a.registered; });
+  std::ostringstream out;
+  out << "\n## The aggregate claims" << (registered ? " (pre-registered: docs/confirmatory.md)" : "") << "\n\n"
+      << "Each is one paired comparison: per seed, the mean over the table's rows of the two algorithms' final returns, "
+         "each in δ units of its row's scenario. A one-sample t test on the per-seed differences decides a difference "
+         "(two-sided), TOST within ±margin decides equivalence, and all "
+      << d.family_size << " hypotheses form one Holm family at α = " << short_number(d.settings.alpha)
+      << ", apart from the paper's claims. Equivalence wins when both reject. A seed counts only with a value in every "
+         "row on both sides. The interval is the unadjusted 95 % t interval.\n\n"
+      << "| claim | comparison | seeds | mean difference (δ) | 95 % interval | sd | p difference (Holm) | p equivalence (Holm) "
+         "| outcome | seeds to resolve |\n|---|---|---|---:|---|---:|---:|---:|---|---:|\n";
+  for (std::size_t i = 0; i < d.comparisons.size(); ++i) {
+    const Comparison& c = d.comparisons[i];
+    const std::string id = i < specs.size() ? specs[i].id : "";
+    const double half = std::isfinite(c.d.se) && c.d.df > 0 ? student_t_quantile(0.975, c.d.df) * c.d.se : NAN;
+    const double sd = std::isfinite(c.d.se) ? c.d.se * std::sqrt(static_cast<double>(c.xs.size())) : NAN;
+    out << "| " << plain_cell(id) << " | " << c.x << " − " << c.y << " | " << plain_cell(c.where.substr(c.where.find(": ") + 2))
+        << " | " << short_number(c.d.diff) << " | "
+        << (std::isfinite(half) ? "[" + short_number(c.d.diff - half) + ", " + short_number(c.d.diff + half) + "]" : "—")
+        << " | " << short_number(sd) << " | " << p_text(c.p_difference) << " (" << p_text(adjusted[2 * i]) << ") | "
+        << p_text(c.p_equivalence) << " (" << p_text(adjusted[2 * i + 1]) << ") | " << outcome_text(c, c.outcome) << " | "
+        << (c.seeds_needed ? std::to_string(*c.seeds_needed) : "—") << " |\n";
+  }
+  out << "\n";
+  for (const AggregateClaimSpec& a : specs) out << "- " << plain_cell(a.id) << ": " << plain_cell(a.statement) << "\n";
+  return out.str();
+}
+
 // claims.md with decided verdicts, the point-mean ones beside them.
 std::string decided_claims_markdown(const Summary& s) {
   const Decisions& d = *s.decisions;
   std::ostringstream out;
-  out << "# Claims decided — grid `" << s.grid.name << "`\n\n" << decided_intro(d) << non_paper_note(s)
+  out << "# Claims decided — grid `" << s.grid.name << "`\n" << aggregate_decisions_markdown(s) << "\n" << decided_intro(d)
+      << non_paper_note(s)
       << "| Claim | Verdict | Why | Point-mean verdict |\n|---|---|---|---|\n";
   for (const DecidedClaim& c : d.claims) {
     const ClaimResult* pm = point_mean_claim(s, c.id);

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <map>
+#include <set>
 #include <stdexcept>
 #include <tuple>
 
@@ -100,6 +102,57 @@ class Builder {
       for (const std::string& algo : baselines)
         add(two_sample(row_label(row), "final return", algo_display_name(kRapidRl), algo_display_name(algo),
                        s_.column_cell(row, kRapidRl), s_.column_cell(row, algo), finals, delta(row.scenario)));
+  }
+
+  // An aggregate claim (sweep/aggregate_claim.hpp): per seed, the mean over the table's rows of
+  // x's and of y's final return in δ units of the row's scenario, paired by seed. A seed counts only
+  // with a value in every row on both sides; `where` says how many counted and how many were left out.
+  void aggregate(const AggregateClaimSpec& spec) {
+    Comparison c;
+    c.metric = "final return, mean over rows in δ units";
+    c.x = algo_display_name(spec.x);
+    c.y = algo_display_name(spec.y);
+    c.paired = true;
+    c.delta = spec.margin;
+    std::map<std::uint64_t, std::pair<double, double>> sums;  // seed → (x, y) summed over rows
+    std::map<std::uint64_t, std::size_t> rows_of;             // seed → rows with both values
+    std::set<std::uint64_t> seen;                             // every seed the claim uses that a cell has
+    bool every_row = !s_.rows.empty();
+    for (const TableRow& row : s_.rows) {
+      const CellSummary* cx = s_.column_cell(row, spec.x);
+      const CellSummary* cy = s_.column_cell(row, spec.y);
+      const std::optional<double> d = delta(row.scenario);
+      if (!cx || !cy || !d) {
+        every_row = false;
+        continue;
+      }
+      for (const CellSummary* cell : {cx, cy})
+        if (!contains(c.cells, cell->key())) c.cells.push_back(cell->key());
+      std::map<std::uint64_t, double> ys;
+      for (const SeedResult& r : cy->seeds)
+        if (spec.uses_seed(r.seed)) {
+          seen.insert(r.seed);
+          if (r.final_return) ys[r.seed] = *r.final_return;
+        }
+      for (const SeedResult& r : cx->seeds) {
+        if (!spec.uses_seed(r.seed)) continue;
+        seen.insert(r.seed);
+        const auto y = ys.find(r.seed);
+        if (!r.final_return || y == ys.end()) continue;
+        sums[r.seed].first += *r.final_return / *d;
+        sums[r.seed].second += y->second / *d;
+        ++rows_of[r.seed];
+      }
+    }
+    if (every_row)
+      for (const auto& [seed, sum] : sums)
+        if (rows_of[seed] == s_.rows.size()) {
+          c.xs.push_back(sum.first / static_cast<double>(s_.rows.size()));
+          c.ys.push_back(sum.second / static_cast<double>(s_.rows.size()));
+        }
+    c.where = spec.id + ": " + std::to_string(s_.rows.size()) + " rows, " + spec.seeds_text() + " (" +
+              std::to_string(c.xs.size()) + " complete, " + std::to_string(seen.size() - c.xs.size()) + " left out)";
+    add(std::move(c));
   }
 
   Decisions finish(const std::vector<IndexedClaim>& claims) {
@@ -307,6 +360,23 @@ std::optional<Decisions> decide_published_baselines(const Summary& s, const Deci
   const FrozenComparisons none;
   Builder b(s, settings, none);
   b.published_baselines(baselines);
+  return b.finish({});
+}
+
+std::vector<AggregateClaimSpec> aggregate_claims_of(const Summary& s) {
+  std::vector<AggregateClaimSpec> specs = registered_aggregate_claims(s.grid.name);
+  specs.insert(specs.end(), s.grid.aggregate_claims.begin(), s.grid.aggregate_claims.end());
+  return specs;
+}
+
+std::optional<Decisions> decide_aggregate_claims(const Summary& s, const DecisionSettings& settings) {
+  const std::vector<AggregateClaimSpec> specs = aggregate_claims_of(s);
+  if (specs.empty() || !s.grid.axes.empty()) return std::nullopt;
+  const FrozenComparisons none;
+  DecisionSettings once = settings;
+  once.looks = 1;  // fixed seeds, one analysis: the looks of --decide chase the paper's claims only
+  Builder b(s, once, none);
+  for (const AggregateClaimSpec& spec : specs) b.aggregate(spec);
   return b.finish({});
 }
 

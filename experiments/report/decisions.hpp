@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "experiments/report/summary.hpp"
+#include "experiments/sweep/aggregate_claim.hpp"
 
 namespace rapid {
 
@@ -38,6 +39,15 @@ std::vector<std::string> published_baselines(const Summary& s);
 // baseline to a grid leaves the claims' verdicts as they were. nullopt when the grid has none of
 // them, no rapid-rl, or axes.
 std::optional<Decisions> decide_published_baselines(const Summary& s, const DecisionSettings& settings);
+
+// The aggregate claims that apply to `s`: those a committed pre-registration registers for its grid
+// (experiments/claims/confirmatory.json), then the grid's own (sweep/aggregate_claim.hpp).
+std::vector<AggregateClaimSpec> aggregate_claims_of(const Summary& s);
+
+// Those claims decided, one paired comparison each (x − y per seed, in δ units; a one-sample t test
+// for a difference, TOST within ±margin), all of them one Holm family of their own at α, apart from
+// the paper's claims and the published baselines (docs/confirmatory.md). nullopt when none apply.
+std::optional<Decisions> decide_aggregate_claims(const Summary& s, const DecisionSettings& settings);
 
 // Per published baseline (display name, in the grid's order), how many rows each outcome of RAPID-RL
 // against it took in s.baseline_decisions; empty without them.

@@ -100,11 +100,45 @@ std::string baselines_line(const json& summary) {
   return html + "</p>\n";
 }
 
+// The aggregate claims first (docs/confirmatory.md): each contrast's estimate in δ units, its
+// interval's ends are in claims.md; here the outcome, the estimate and both p-values.
+std::string aggregate_table(const json& summary) {
+  if (!summary.contains("aggregate_decisions")) return "";
+  const json& d = summary["aggregate_decisions"];
+  const json specs = summary.value("aggregate_claims", json::array());
+  bool registered = false;
+  for (const json& a : specs) registered = registered || a.value("registered", false);
+  std::string html = std::string("<p>") + (registered ? "The pre-registered question (docs/confirmatory.md), " : "The aggregate claims, ") +
+                     "decided at a family-wise error of α = " + short_number(optional_number(d, "alpha")) +
+                     ": per seed, the mean over the rows of the two final returns in δ units, a paired t test for a "
+                     "difference and TOST within ±margin. An aggregate over the rows is not the paper's per-row wording; "
+                     "the paper's claims follow.</p>\n<table class=\"answer\" id=\"answer-aggregate\"><thead><tr><th>Claim</th>"
+                     "<th>Question</th><th>Outcome</th><th>Mean difference (δ)</th><th>p difference</th><th>p equivalence</th>"
+                     "<th>Seeds</th></tr></thead><tbody>\n";
+  const json& comparisons = d.value("comparisons", json::array());
+  for (std::size_t i = 0; i < comparisons.size(); ++i) {
+    const json& c = comparisons[i];
+    const json spec = i < specs.size() ? specs[i] : json::object();
+    const std::string outcome = c.value("outcome", "");
+    const std::string said = outcome == "x better"     ? c.value("x", "") + " better"
+                             : outcome == "y better"   ? c.value("y", "") + " better"
+                             : outcome == "equivalent" ? "equivalent within ±" + short_number(optional_number(c, "delta"))
+                                                       : "undecided";
+    const std::string where = c.value("where", "");
+    html += "<tr><td>" + html_escape(spec.value("id", "")) + "</td><td>" + html_escape(spec.value("statement", "")) + "</td>" +
+            verdict_cell(said) + "<td>" + short_number(optional_number(c, "difference")) + "</td><td>" +
+            short_number(optional_number(c, "p_difference")) + "</td><td>" + short_number(optional_number(c, "p_equivalence")) +
+            "</td><td>" + html_escape(where.substr(where.find(": ") == std::string::npos ? 0 : where.find(": ") + 2)) +
+            "</td></tr>\n";
+  }
+  return html + "</tbody></table>\n";
+}
+
 }  // namespace
 
 std::string answer_section(const ReportFolder& folder) {
   const json& summary = folder.summary;
-  const std::string body = claims_table(summary) + best_per_row(summary) + baselines_line(summary);
+  const std::string body = aggregate_table(summary) + claims_table(summary) + best_per_row(summary) + baselines_line(summary);
   if (body.empty()) return "";
   return "<section id=\"answer\"><h2>The answer</h2>\n" + body + "</section>\n";
 }

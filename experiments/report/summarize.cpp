@@ -381,6 +381,7 @@ Summary build_summary(const std::filesystem::path& sweep_dir, const SummaryOptio
       } else {
         s.baseline_decisions = decide_published_baselines(s, *settings);
       }
+      s.aggregate_decisions = decide_aggregate_claims(s, *settings);
     }
   }
   return s;

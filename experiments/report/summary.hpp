@@ -230,6 +230,9 @@ struct Summary {
   // RAPID-RL against the baselines the paper does not run, a family of its own
   // (decide_published_baselines); where the profile has a decision rule and the grid such a baseline.
   std::optional<Decisions> baseline_decisions;
+  // The aggregate claims (a committed pre-registration's for this grid, and the grid's own), decided
+  // as a family of their own (report/decisions.hpp, docs/confirmatory.md); absent without any.
+  std::optional<Decisions> aggregate_decisions;
   nlohmann::json adaptive_seeds;       // a --decide folder's looks and runs (adaptive_seeds.hpp); else null
   std::vector<std::string> warnings;  // printed by `rapid summarize`
   RunProvenance provenance;           // of the ok records

@@ -4,6 +4,7 @@
 
 #include "algos/registry.hpp"
 #include "core/json_input.hpp"
+#include "experiments/report/decisions.hpp"
 #include "experiments/report/summary.hpp"
 #include "experiments/run/json_numbers.hpp"
 #include "experiments/sweep/graph.hpp"
@@ -204,6 +205,14 @@ nlohmann::json summary_to_json(const Summary& s) {
   for (const ClaimResult& c : s.claims) j["claims"].push_back(claim_json(c));
   if (s.decisions) j["decisions"] = decisions_json(*s.decisions);  // absent without a decision rule
   if (s.baseline_decisions) j["baseline_decisions"] = decisions_json(*s.baseline_decisions);
+  if (s.aggregate_decisions) {
+    j["aggregate_decisions"] = decisions_json(*s.aggregate_decisions);
+    nlohmann::json specs = nlohmann::json::array();  // in the order of the decisions' comparisons
+    for (const AggregateClaimSpec& a : aggregate_claims_of(s))
+      specs.push_back({{"id", a.id}, {"statement", a.statement}, {"x", a.x}, {"y", a.y}, {"margin", a.margin},
+                       {"seeds", a.seeds_text()}, {"registered", a.registered}});
+    j["aggregate_claims"] = specs;
+  }
   if (!s.adaptive_seeds.is_null()) j["adaptive_seeds"] = s.adaptive_seeds;  // absent outside --decide folders
   if (!s.provenance.empty()) j["provenance"] = s.provenance.to_json();  // absent without an ok record
   return j;

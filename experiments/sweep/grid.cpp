@@ -506,14 +506,26 @@ void parse_claims(const GridChecker& check, const json& doc, Grid& grid) {
   for (const ClaimSpec& c : paper_claims()) ids.insert(c.id);
   for (std::size_t i = 0; i < claims.size(); ++i) {
     const std::string field = "claims[" + std::to_string(i) + "]";
-    ClaimSpec c;
-    try {
-      c = parse_claim(claims[i], field);
-    } catch (const std::invalid_argument& e) {
-      const std::string what = e.what();
-      const auto colon = what.find(": ");
-      check.fail(what.substr(0, colon), what.substr(colon + 2));
+    // A claim parser's "FIELD: problem" as the grid's one line.
+    const auto parsed = [&](const auto& parse) {
+      try {
+        return parse(claims[i], field);
+      } catch (const std::invalid_argument& e) {
+        const std::string what = e.what();
+        const auto colon = what.find(": ");
+        check.fail(what.substr(0, colon), what.substr(colon + 2));
+      }
+    };
+    if (is_aggregate_claim(claims[i])) {
+      AggregateClaimSpec a = parsed(parse_aggregate_claim);
+      if (!ids.insert(a.id).second) check.fail(field + ".id", "'" + a.id + "' is taken (the paper's C1–C6 and the grid's ids are one list)");
+      for (const std::string& algo : {a.x, a.y})
+        if (std::find(grid.algos.begin(), grid.algos.end(), algo) == grid.algos.end())
+          check.fail(field, "names algorithm '" + algo + "', which the grid does not run; it has " + comma_joined(grid.algos));
+      grid.aggregate_claims.push_back(std::move(a));
+      continue;
     }
+    ClaimSpec c = parsed(parse_claim);
     if (!ids.insert(c.id).second) check.fail(field + ".id", "'" + c.id + "' is taken (the paper's C1–C6 and the grid's ids are one list)");
     const auto must_have = [&](const std::vector<std::string>& named, const std::vector<std::string>& has, const char* what) {
       for (const std::string& n : named)

@@ -50,6 +50,7 @@
 #include "experiments/run/dataset_build.hpp"  // ReferenceSettings, the grid's "reference" object
 #include "experiments/run/external_method.hpp"
 #include "experiments/run/run_config.hpp"     // kDefaultProfile
+#include "experiments/sweep/aggregate_claim.hpp"
 #include "experiments/sweep/claim_spec.hpp"
 
 namespace rapid {
@@ -77,6 +78,7 @@ struct Grid {
   std::map<std::string, long> reference_steps;  // "reference"."steps" by scenario (absent: 0)
   std::vector<GridAxis> axes;  // in key order
   std::vector<ClaimSpec> claims;  // the grid's own, checked after the paper's (claim_spec.hpp)
+  std::vector<AggregateClaimSpec> aggregate_claims;  // the grid's own "kind": "aggregate" (aggregate_claim.hpp)
   std::map<std::string, ExternalMethod> external;  // "external": name → its command, script and keys
   int max_retries = 2;
   std::optional<int> jobs;
