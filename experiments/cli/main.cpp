@@ -1,4 +1,6 @@
 // `rapid`: the harness's one command line. See docs/design.md §Command line and docs/usage.md.
+#include <cerrno>
+#include <cstring>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -57,7 +59,14 @@ int main(int argc, char** argv) {
   for (const rapid::Command& command : commands) {
     if (!command.app->parsed()) continue;
     try {
-      return command.run();
+      const int status = command.run();
+      // What a command printed is its output: a pipe closed early or a full disk is a failure, not
+      // exit 0 with nothing written (issue #67: `rapid status … > /dev/full` said 0).
+      if (!std::cout.flush()) {
+        std::cerr << "rapid: failed: could not write standard output: " << std::strerror(errno) << "\n";
+        return status == rapid::kExitOk ? rapid::kExitFailed : status;
+      }
+      return status;
     } catch (const rapid::UsageError& e) {
       std::cerr << "rapid: error: " << rapid::printable(e.what()) << "\n";
       return rapid::kExitUsage;

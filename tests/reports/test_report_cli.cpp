@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <map>
 
+#include <sys/wait.h>
+
 #include "tests/cli_runner.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
 #include "tests/reports/report_test_util.hpp"
@@ -158,6 +160,23 @@ TEST_F(ReportCliTest, DecideAnalysesPrintAndWriteOnlyWhereAsked) {
   out = rapid_cli("simulate-decide " + sweep.string() + " --out ''", true);
   EXPECT_EQ(out.exit_code, 2) << out.text;
   EXPECT_EQ(listing(committed), before);
+}
+
+// What a command prints is its output: when standard output cannot take it (a full disk, a closed
+// pipe), the command fails with one line, never exit 0 with nothing written (issue #67).
+TEST_F(ReportCliTest, AStandardOutputThatCannotBeWrittenIsAFailure) {
+  const std::string results = std::string(RAPID_SOURCE_DIR) + "/results/";
+  const std::string err = (scratch.path() / "err").string();
+  for (const std::string args : {"paper " + results + "paper-flow", "status " + results + "paper-flow",
+                                 "replay-decide " + results + "paper-flow-decided", "beside " + results + "paper-flow " +
+                                 results + "paper-flow-decided", "run --print-config --scenario merge --algo ddpg --seed 0 --out " +
+                                 (scratch.path() / "r").string()}) {
+    const int raw = std::system((std::string(RAPID_BIN) + " " + args + " > /dev/full 2> " + err).c_str());
+    ASSERT_TRUE(WIFEXITED(raw)) << args;
+    EXPECT_EQ(WEXITSTATUS(raw), 1) << args;
+    const std::string text = report_test::read_text(err);
+    EXPECT_NE(text.find("could not write standard output"), std::string::npos) << args << ": " << text;
+  }
 }
 
 // --write-baseline replaces only a regular file, in a folder it can write, and finds out before
