@@ -37,6 +37,12 @@ inline CLI::Validator count_validator(int min = 1) {
       "COUNT");
 }
 
+// An output path given on the command line: not empty ("--out ''" once fell back to the default).
+inline CLI::Validator non_empty_path_validator() {
+  return CLI::Validator([](std::string& s) -> std::string { return s.empty() ? "must name a folder, got an empty path" : ""; },
+                        "PATH");
+}
+
 // The futility threshold of --decide's looks: a number in [0, 1). (CLI11's Range lets NaN through,
 // and "conditional power below nan" froze nothing while claiming to.)
 inline CLI::Validator futility_validator() {

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/atomic_file.hpp"
+#include "experiments/cli/checks.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
 #include "experiments/report/summarize.hpp"
@@ -129,7 +130,8 @@ Command add_recheck_command(CLI::App& parent) {
       "recheck", "Rerun a sweep's grid on new seeds from its references and datasets and say which verdicts held");
   sub->add_option("SWEEP_DIR", o->sweep, "a finished (or partial) sweep folder")->required();
   sub->add_option("--seeds", o->seeds, "the new seeds: A-B or a comma-separated list (none of the sweep's)")->required();
-  sub->add_option("--out", o->out, "the recheck's sweep folder (default: SWEEP_DIR-recheck)");
+  sub->add_option("--out", o->out, "the recheck's sweep folder (default: SWEEP_DIR-recheck)")
+      ->check(non_empty_path_validator());
   sub->add_flag("--force", o->force, "write into an --out folder that is another grid's sweep folder");
   sub->add_option("--jobs,-j", o->jobs, "worker processes (default: the number of cores)")->check(CLI::Range(1, 1024));
   return {sub, [o] { return recheck_command(*o); }};

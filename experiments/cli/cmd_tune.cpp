@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/json_input.hpp"
+#include "experiments/cli/checks.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
 #include "experiments/cli/output_folder.hpp"
@@ -184,7 +185,8 @@ Command add_tune_command(CLI::App& parent) {
       "tune", "Tune every algorithm of a grid alike: successive halving over a committed search space on tuning seeds (docs/tuning.md)");
   sub->add_option("grid", o->grid, "the grid whose (scenario, algorithm) pairs to tune (its seeds are the test seeds)")->required();
   sub->add_option("--space", o->space, "search space file (experiments/tuning/*.json)")->required();
-  sub->add_option("--out", o->out, "tuning folder (default: results/<grid name>-tune)");
+  sub->add_option("--out", o->out, "tuning folder (default: results/<grid name>-tune)")
+      ->check(non_empty_path_validator());
   sub->add_option("--jobs,-j", o->jobs, "worker processes (default: the grid's \"jobs\", else the number of cores)")
       ->check(CLI::Range(1, 1024));
   sub->add_option("--reuse-datasets", o->reuse_datasets,

@@ -159,6 +159,14 @@ TEST_F(ReportCliTest, DecideAnalysesPrintAndWriteOnlyWhereAsked) {
   }
   out = rapid_cli("simulate-decide " + sweep.string() + " --out ''", true);
   EXPECT_EQ(out.exit_code, 2) << out.text;
+  // An empty --out is refused by every command that takes one (issue #67: tune and recheck fell
+  // back to their default folder).
+  for (const std::string cmd : {"tune " + (sweep / "grid.json").string() + " --space x.json", "recheck " + sweep.string() + " --seeds 100-101",
+                                "replay-decide " + committed.string()}) {
+    out = rapid_cli(cmd + " --out ''", true);
+    EXPECT_EQ(out.exit_code, 2) << cmd << ": " << out.text;
+    EXPECT_NE(out.text.find("--out"), std::string::npos) << cmd << ": " << out.text;
+  }
   EXPECT_EQ(listing(committed), before);
 }
 
