@@ -267,6 +267,15 @@ int sweep_of(const SweepOptions& o, const Grid& grid) {
   if (o.only_given && o.only.empty())
     throw UsageError("--only: must name a subset, got an empty string; leave --only out to run the whole grid");
   const fs::path dir = o.out_given ? fs::path(o.out) : fs::path("results") / grid.name;
+  // A selection run into a committed results folder (reports without the records behind them)
+  // would rewrite its table, claims and report as a table of the selection's runs alone (issue #68).
+  if (!o.only.empty() && !o.preset) {
+    std::error_code ec;
+    if (fs::exists(dir / "summary.json", ec) && !fs::is_directory(dir / "jobs", ec))
+      throw UsageError("--out: " + dir.string() +
+                       " holds reports whose records are not there (a committed results folder); a --only run would "
+                       "rewrite them as a table of its own runs: name a scratch folder with --out");
+  }
   if (o.check_references && o.reuse_datasets.empty())
     throw UsageError("--check-references: needs --reuse-datasets FROM, the folder whose references to check against");
   const std::optional<SweepFolder> source = reuse_source(o, dir);

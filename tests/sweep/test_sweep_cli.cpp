@@ -220,5 +220,34 @@ TEST(SweepCli, AFolderThatHoldsTheUsersOwnFilesIsNotWrittenInto) {
   EXPECT_EQ(run_rapid("summarize " + sweep.string() + " --no-plots --out " + mine.string()).exit_code, 0);
 }
 
+// Issue #68: the docs' one-cell recipe (`--only … --force`, no --out) ran into results/<grid>/ and
+// rewrote its committed table as one of "1 of 390 runs". A committed results folder (reports whose
+// records are not there) is refused for a selection, before anything runs or is written.
+TEST(SweepCli, ASelectionIsNotRunIntoACommittedResultsFolder) {
+  const auto read_text = [](const fs::path& p) {
+    std::ifstream in(p);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  testing::ScratchDir dir;
+  const fs::path grid = dir.path() / "g.json";
+  write_json(grid, pendulum_grid("g", {"ddpg"}, {0, 1}, 400));
+  const fs::path committed = dir.path() / "committed";
+  ASSERT_EQ(run_rapid("sweep " + grid.string() + " --jobs 2 --no-animations --out " + committed.string()).exit_code, 0);
+  fs::remove_all(committed / "jobs");  // as git has it: the reports, not the records
+  const std::string table = read_text(committed / "table.md");
+  for (const std::string only : {" --only seed=0 --force", " --only seed=1"}) {
+    const Result r = run_rapid("sweep " + grid.string() + " --jobs 1" + only + " --out " + committed.string());
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(line_count(r.output), 1u) << r.output;
+    EXPECT_NE(r.output.find("a committed results folder); a --only run would rewrite them"), std::string::npos) << r.output;
+  }
+  EXPECT_EQ(read_text(committed / "table.md"), table);
+  EXPECT_FALSE(fs::exists(committed / "jobs"));
+  // Into a scratch folder, the same selection runs.
+  EXPECT_EQ(run_rapid("sweep " + grid.string() + " --jobs 1 --only seed=1 --no-summary --out " + (dir.path() / "cell").string())
+                .exit_code,
+            0);
+}
+
 }  // namespace
 }  // namespace rapid
