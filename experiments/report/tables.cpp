@@ -389,6 +389,21 @@ std::string table_csv(const Summary& s) {
   return out.str();
 }
 
+std::string finals_csv(const Summary& s) {
+  std::ostringstream out;
+  out << "scenario,dataset,algo";
+  for (const GridAxis& axis : s.grid.axes) out << "," << axis.key;
+  out << ",seed,status,final_return,final_episodes\n";
+  for (const CellSummary& c : s.cells) {
+    std::string prefix = c.scenario + "," + (c.dataset.empty() ? sweep_files::kNoDataset : c.dataset) + "," + c.algo;
+    for (const GridAxis& axis : s.grid.axes) prefix += "," + axis_text(c.axis, axis.key);
+    for (const SeedResult& r : c.seeds)
+      out << prefix << "," << r.seed << "," << r.status << "," << exact_number(r.final_return) << ","
+          << (r.final_return ? std::to_string(r.final_episodes) : "") << "\n";
+  }
+  return out.str();
+}
+
 std::string runs_csv(const Summary& s) {
   std::ostringstream out;
   out << "scenario,dataset,algo";

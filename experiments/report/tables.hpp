@@ -15,6 +15,11 @@ std::string table_latex(const Summary& summary);
 // One line per row: scenario,dataset, then per algorithm mean,std,n_ok,n_expected (exact
 // numbers, empty when there is no ok seed), then the best algorithm.
 std::string table_csv(const Summary& summary);
+// finals.csv: one line per run of every cell, `scenario,dataset,algo,<axes>,seed,status,
+// final_return,final_episodes`: the number Table I averages (the final evaluation's mean, or with
+// final_episodes 0 the mean of the last K evaluations); empty for a run that is not ok.
+std::string finals_csv(const Summary& summary);
+
 // runs.csv, the long format for pandas / seaborn / rliable: one line per ok run × evaluation,
 // scenario,dataset,algo,<one column per axis>,seed,step,return (dataset "none" for ddpg; an axis
 // column is empty for a cell that does not read it; step: the evaluation's target step).

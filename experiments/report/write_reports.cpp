@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 const std::vector<std::string>& report_file_names() {
   static const std::vector<std::string> names = {
-      "table.md",    "table.tex",   "table.csv",    "runs.csv",     "summary.json", "claims.md",   "report.html",
+      "table.md",    "table.tex",   "table.csv",    "runs.csv",     "finals.csv",   "summary.json", "claims.md", "report.html",
       "figure2.png", "figure2.pdf", "figure3a.png", "figure3a.pdf", "figure3b.png", "figure3b.pdf"};
   return names;
 }
@@ -38,6 +38,7 @@ void write_reports(const Summary& summary, const fs::path& out_dir, std::ostream
   write_file_atomic((out_dir / "table.tex").string(), table_latex(summary));
   write_file_atomic((out_dir / "table.csv").string(), table_csv(summary));
   write_file_atomic((out_dir / "runs.csv").string(), runs_csv(summary));
+  write_file_atomic((out_dir / "finals.csv").string(), finals_csv(summary));
   write_file_atomic((out_dir / "summary.json").string(), summary_json.dump(1) + "\n");
   write_file_atomic((out_dir / "claims.md").string(), claims_markdown(summary));
 
@@ -47,7 +48,7 @@ void write_reports(const Summary& summary, const fs::path& out_dir, std::ostream
     expected += c.n_expected;
   }
   out << "summarized " << summary.cells.size() << " cells (" << ok << "/" << expected << " runs ok) into "
-      << out_dir.string() << ": table.md table.tex table.csv runs.csv summary.json claims.md\n";
+      << out_dir.string() << ": table.md table.tex table.csv runs.csv finals.csv summary.json claims.md\n";
   for (const std::string& w : summary.warnings) out << "warning: " << w << "\n";
   if (!summary.decisions) {
     for (const ClaimResult& c : summary.claims) out << "  " << c.id << " " << c.verdict << ": " << c.reason << "\n";

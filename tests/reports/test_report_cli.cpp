@@ -59,6 +59,13 @@ TEST_F(ReportCliTest, SummarizeWritesEveryReportAndShowsFailedSeeds) {
   const std::string claims = report_test::read_text(sweep / "claims.md");
   EXPECT_NE(claims.find("## C3: "), std::string::npos) << claims;
   EXPECT_NE(claims.find("Point-mean check (not a decision): PASS. PASS when CoL-all's mean"), std::string::npos) << claims;
+  // finals.csv: each run's final return, the number Table I averages, where a reader looks (#68).
+  const std::string finals = report_test::read_text(sweep / "finals.csv");
+  EXPECT_EQ(finals.rfind("scenario,dataset,algo,seed,status,final_return,final_episodes\n", 0), 0u) << finals;
+  EXPECT_NE(finals.find("\npendulum,initial,rapid-rl,1,ok,110,"), std::string::npos) << finals;
+  EXPECT_NE(finals.find("\npendulum,initial,rapid-rl,2,failed,,\n"), std::string::npos) << finals;
+  EXPECT_NE(finals.find("\npendulum,none,ddpg,0,ok,50,"), std::string::npos) << finals;
+  EXPECT_EQ(std::count(finals.begin(), finals.end(), '\n'), 1 + 15);  // 5 cells × 3 seeds
 }
 
 // A report file that is a symlink (or FIFO, device, folder) is refused before any report is
