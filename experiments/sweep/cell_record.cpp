@@ -69,6 +69,13 @@ CellRecord read_cell_record(const SweepFolder& folder, const SweepJob& cell) {
   } catch (const std::runtime_error&) {
     out.hash_checked = false;  // the dataset is gone: the record cannot be checked
   }
+  // A run is ok only when the attempt that wrote its record is (issue #67): an external command may
+  // write a valid record and then fail. The outcome is of the last attempt; restored records have none.
+  if (out.status == "ok")
+    if (const std::optional<Outcome> o = read_outcome(folder, cell); o && o->state != "ok") {
+      out.status = "failed";
+      out.error = "its record says ok, but the attempt that wrote it failed: " + o->error;
+    }
   return out;
 }
 

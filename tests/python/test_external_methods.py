@@ -97,6 +97,21 @@ class ExternalMethodInAGrid(unittest.TestCase):
         status = self.rapid("status", out).stdout
         self.assertIn("constant's command exited with code 3: constant_method: told to fail", status)
 
+    def test_a_valid_record_from_a_failed_attempt_is_not_ok(self):
+        # Issue #67: the sweep said failed, but status, summarize and the next sweep took the run as
+        # ok and never ran it again. A run is ok only when its attempt is.
+        path = self.write_grid(grid(self.constant(fail_after_record=True), ["constant"], seeds=[0]))
+        out = os.path.join(self.dir, "out")
+        self.assertEqual(self.rapid("sweep", path, "--out", out, "--no-summary").returncode, 1)
+        status = self.rapid("status", out).stdout
+        self.assertRegex(status, r"failed\s+1")
+        self.assertIn("failed after writing its record", status)
+        self.rapid("summarize", out, "--no-plots")
+        self.assertEqual(read_json(os.path.join(out, "summary.json"))["status_counts"].get("ok", 0), 0)
+        again = self.rapid("sweep", path, "--out", out, "--no-summary")
+        self.assertEqual(again.returncode, 1)
+        self.assertIn("1 jobs run", again.stdout + again.stderr)
+
     def test_a_command_that_writes_no_record_fails(self):
         path = self.write_grid(grid(self.constant(no_record=True), ["constant"], seeds=[0]))
         out = os.path.join(self.dir, "out")
