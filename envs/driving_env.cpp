@@ -1,11 +1,13 @@
 #include "envs/driving_env.hpp"
 
+#include <stdlib.h>  // mkstemps
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -62,15 +64,26 @@ std::string write_route_file(const std::string& template_path, const ScenarioSet
                                      std::pair{std::string("\"RAMP_INFLOW\""), settings.ramp_inflow}})
     for (auto at = xml.find(token); at != std::string::npos; at = xml.find(token, at))
       xml.replace(at, token.size(), "\"" + per_second(value) + "\"");
-  static std::atomic<int> counter{0};
-  const auto path = std::filesystem::temp_directory_path() /
-                    ("rapid-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" +
-                     std::filesystem::path(template_path).filename().string());
-  std::ofstream out(path);
-  out << xml;
-  out.close();
-  if (!out) throw std::runtime_error("cannot write the route file " + path.string());
-  return path.string();
+  // A name no one can guess, created by this call alone (O_EXCL, mode 0600): a predictable name
+  // in a shared /tmp let another user's symlink there redirect the write (issue #67).
+  const std::string tail = "-" + std::filesystem::path(template_path).filename().string();
+  std::string path = (std::filesystem::temp_directory_path() / ("rapid-XXXXXX" + tail)).string();
+  const int fd = ::mkstemps(path.data(), static_cast<int>(tail.size()));
+  if (fd < 0) throw std::runtime_error("cannot create a route file in " + std::filesystem::temp_directory_path().string() +
+                                       ": " + std::strerror(errno));
+  std::size_t written = 0;
+  while (written < xml.size()) {
+    const ssize_t n = ::write(fd, xml.data() + written, xml.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    written += static_cast<std::size_t>(n);
+  }
+  const bool closed = ::close(fd) == 0;
+  if (written != xml.size() || !closed) {
+    std::filesystem::remove(path);
+    throw std::runtime_error("cannot write the route file " + path);
+  }
+  return path;
 }
 }  // namespace
 

@@ -58,6 +58,9 @@ class DrivingEnv final : public Env {
   void reset(std::uint64_t seed, VecRef obs) override;
   StepResult step(const ConstVecRef& action, VecRef obs) override;
   void set_builtin_driver(bool on) override { builtin_ = on; }
+  // The temporary routes file SUMO reads (the scenario's with the configured inflows), made at the
+  // first reset under a random name and removed with the env; empty before.
+  const std::string& route_file() const { return route_file_; }
   // Recording (envs/driving_trace.cpp): with a trace attached, reset() adds an episode (and the
   // road, once) and step() a decision; with none, neither reads anything extra from SUMO.
   void record(Trace* trace) override;

@@ -2,6 +2,13 @@
 #include <gtest/gtest.h>
 
 #include <libsumo/libsumo.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
 
 #include "envs/driving_env.hpp"
 #include "envs/scenario_hooks.hpp"
@@ -83,6 +90,49 @@ TEST(CutIn, ObstaclesAreSlowerThanTheDesiredSpeedAndCutIn) {
     cut_ins += obstacles.completed_cut_ins();
   }
   EXPECT_GT(cut_ins, 0) << "no obstacle cut into the ego's lane";
+}
+
+}  // namespace
+}  // namespace rapid
+
+namespace rapid {
+namespace {
+
+// Issue #67: the route file's name was /tmp/rapid-<pid>-<n>-<file>, so a symlink planted there by
+// anyone could redirect the write. Now the name is random and the file is created by the env alone
+// (O_EXCL, 0600): a planted symlink at every old name is left alone, and the victim unchanged.
+TEST(RouteFile, IsCreatedUnderANameNoOneCanPlantALinkAt) {
+  namespace fs = std::filesystem;
+  const fs::path victim = fs::temp_directory_path() / ("rapid-victim-" + std::to_string(::getpid()));
+  { std::ofstream(victim) << "untouched"; }
+  std::vector<fs::path> planted;
+  for (int n = 0; n < 4; ++n) {
+    planted.push_back(fs::temp_directory_path() / ("rapid-" + std::to_string(::getpid()) + "-" + std::to_string(n) + "-merge.rou.xml"));
+    fs::remove(planted.back());
+    fs::create_symlink(victim, planted.back());
+  }
+  std::string made;
+  {
+    auto env = test::make_driving("merge");
+    ASSERT_NE(env, nullptr);
+    Vec obs(env->obs_dim());
+    env->reset(0, obs);
+    made = env->route_file();
+    ASSERT_FALSE(made.empty());
+    EXPECT_EQ(std::find(planted.begin(), planted.end(), fs::path(made)), planted.end());
+    EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(made)));
+    EXPECT_EQ(fs::status(made).permissions() & (fs::perms::group_all | fs::perms::others_all), fs::perms::none);
+    std::ifstream routes(made);
+    std::string xml((std::istreambuf_iterator<char>(routes)), std::istreambuf_iterator<char>());
+    EXPECT_NE(xml.find("<routes"), std::string::npos);
+    EXPECT_EQ(xml.find("\"INFLOW\""), std::string::npos);  // the inflows filled in
+  }
+  std::ifstream in(victim);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "untouched");
+  EXPECT_FALSE(fs::exists(fs::symlink_status(made)));  // removed with the env
+  for (const fs::path& p : planted) fs::remove(p);
+  fs::remove(victim);
 }
 
 }  // namespace
