@@ -523,6 +523,6 @@ TEST(RapidCli, AnUnknownSubcommandAndAnOutOfRangeCountAreNamed) {
   }
   EXPECT_EQ(names, (std::vector<std::string>{"rollout", "dataset", "run", "sweep", "status", "summarize", "diff", "bench",
                                              "budget", "recheck", "simulate-decide", "replay-decide", "eval-budget", "paper",
-                                             "beside", "tune"}))
+                                             "beside", "tune", "rerun"}))
       << unknown;
 }

@@ -29,6 +29,7 @@ Command add_eval_budget_command(CLI::App& parent);
 Command add_paper_command(CLI::App& parent);
 Command add_beside_command(CLI::App& parent);
 Command add_tune_command(CLI::App& parent);
+Command add_rerun_command(CLI::App& parent);
 
 // `rapid sweep` of a parsed grid into `out` on local processes (`jobs` 0: one per core), starting
 // from `reuse_from`'s references and datasets where it has them for this grid (empty: none), its

@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
       rapid::add_paper_command(app),
       rapid::add_beside_command(app),
       rapid::add_tune_command(app),
+      rapid::add_rerun_command(app),
   };
 
   // CLI11 answers `rapid frobnicate` with "A subcommand is required"; name the unknown one.

@@ -251,3 +251,61 @@ TEST(SweepCli, ASelectionIsNotRunIntoACommittedResultsFolder) {
 
 }  // namespace
 }  // namespace rapid
+
+namespace rapid {
+namespace {
+
+// `rapid rerun` (issue #68): one committed run again in a scratch folder, beside the committed one.
+// The same build gives the same bits: "identical", exit 0. A committed number this build does not
+// give is named (the first point that differs), exit 1. The committed folder is never written.
+TEST(Rerun, RerunsOneCommittedRunBesideItAndNeverWritesTheFolder) {
+  const auto read_text = [](const fs::path& p) {
+    std::ifstream in(p);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  const auto listing = [&](const fs::path& d) {
+    std::map<std::string, std::string> files;
+    for (const auto& e : fs::recursive_directory_iterator(d))
+      if (e.is_regular_file()) files[e.path().string()] = read_text(e.path());
+    return files;
+  };
+  testing::ScratchDir dir;
+  const fs::path grid = dir.path() / "g.json";
+  write_json(grid, pendulum_grid("g", {"rapid-rl", "ddpg"}, {0, 1}, 400));
+  const fs::path committed = dir.path() / "committed";
+  ASSERT_EQ(run_rapid("sweep " + grid.string() + " --jobs 2 --no-animations --out " + committed.string()).exit_code, 0);
+  fs::remove_all(committed / "jobs");  // as git has it
+  fs::remove_all(committed / "datasets");
+  const auto before = listing(committed);
+
+  Result r = run_rapid("rerun " + committed.string() + " --cell pendulum/initial/rapid-rl --seed 1 --out " +
+                       (dir.path() / "scratch").string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("identical: the curve and the final return, bit for bit"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("| final return | "), std::string::npos) << r.output;
+  EXPECT_EQ(listing(committed), before);
+
+  // A committed final return this build does not give: named, exit 1.
+  nlohmann::json summary = read_json(committed / "summary.json");
+  for (auto& c : summary["cells"])
+    if (c["algo"] == "ddpg")
+      for (auto& seed : c["seeds"])
+        if (seed["seed"] == 0) seed["final"] = seed["final"].get<double>() + 1.0;
+  write_json(committed / "summary.json", summary);
+  r = run_rapid("rerun " + committed.string() + " --cell pendulum/none/ddpg --seed 0 --out " + (dir.path() / "scratch2").string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("differs: first at the final return (committed "), std::string::npos) << r.output;
+
+  // Bad input: one line, exit 2, nothing run; a scratch folder inside the committed one is refused.
+  for (const std::string bad : std::vector<std::string>{" --cell pendulum/initial --seed 0", " --cell pendulum/initial/rapid-rl --seed 7",
+                                " --cell merge/initial/rapid-rl --seed 0",
+                                " --cell pendulum/initial/rapid-rl --seed 0 --out " + (committed / "x").string()}) {
+    r = run_rapid("rerun " + committed.string() + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.output;
+    EXPECT_EQ(line_count(r.output), 1u) << bad << ": " << r.output;
+  }
+  EXPECT_FALSE(fs::exists(committed / "x"));
+}
+
+}  // namespace
+}  // namespace rapid
