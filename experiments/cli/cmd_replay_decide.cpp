@@ -33,7 +33,26 @@ struct ReplayOptions {
   double futility = 0.10;
   std::string run_times;  // a sweep on the same protocol whose records price the runs per scenario
   std::string out;        // where to write the report too (issue #67: never into FOLDER unasked)
+  // A folder run on fixed seeds (no decide.json), replayed as if these were look 0 (issue #66).
+  std::string initial_seeds;
+  DecideSettings fixed_plan;
 };
+
+// "200-209": the seeds a fixed-seed folder's replay takes as look 0.
+std::vector<std::uint64_t> seed_range(const std::string& text) {
+  const auto dash = text.find('-');
+  try {
+    if (dash == std::string::npos || dash == 0 || text.find_first_not_of("0123456789-") != std::string::npos)
+      throw std::invalid_argument("");
+    const std::uint64_t a = std::stoull(text.substr(0, dash)), b = std::stoull(text.substr(dash + 1));
+    if (b < a || b - a >= 1000) throw std::invalid_argument("");
+    std::vector<std::uint64_t> seeds;
+    for (std::uint64_t s = a; s <= b; ++s) seeds.push_back(s);
+    return seeds;
+  } catch (const std::exception&) {
+    throw UsageError("--initial-seeds: expected A-B with A ≤ B (at most 1,000 seeds), got '" + text + "'");
+  }
+}
 
 // Per scenario, a run's cost at the sweep's evaluation and the evaluation budget's gain
 // (report/eval_budget.hpp), from `sweep`'s records.
@@ -57,19 +76,31 @@ std::map<std::string, ScenarioRunCost> measured_run_costs(const fs::path& sweep,
 int replay_decide_command(const ReplayOptions& o) {
   const fs::path dir = o.folder;
   const fs::path plan_path = dir / sweep_files::kDecide;
-  nlohmann::json plan;
-  try {
-    plan = read_json_input(plan_path.string());
-  } catch (const std::invalid_argument& e) {
-    throw UsageError("FOLDER: " + std::string(e.what()) + " (a folder rapid sweep --decide has looked at)");
-  }
+  nlohmann::json plan = nlohmann::json::object();
   DecideSettings settings;
   std::vector<std::uint64_t> initial;
-  try {
-    settings = decide_settings_of(plan);
-    initial = plan.at("initial_seeds").get<std::vector<std::uint64_t>>();
-  } catch (const std::exception& e) {
-    throw UsageError(plan_path.string() + ": " + e.what());
+  std::error_code exists_ec;
+  if (!o.initial_seeds.empty()) {
+    if (fs::exists(plan_path, exists_ec))
+      throw UsageError("--initial-seeds: FOLDER has a decide.json; its own looks are replayed without it");
+    initial = seed_range(o.initial_seeds);
+    settings = o.fixed_plan;
+    settings.rule = LookRule::kFreeze;
+    if (const std::string problem = decide_plan_problem(static_cast<int>(initial.size()), settings); !problem.empty())
+      throw UsageError(problem);
+  } else {
+    try {
+      plan = read_json_input(plan_path.string());
+    } catch (const std::invalid_argument& e) {
+      throw UsageError("FOLDER: " + std::string(e.what()) +
+                       " (a folder rapid sweep --decide has looked at; for one run on fixed seeds, give --initial-seeds)");
+    }
+    try {
+      settings = decide_settings_of(plan);
+      initial = plan.at("initial_seeds").get<std::vector<std::uint64_t>>();
+    } catch (const std::exception& e) {
+      throw UsageError(plan_path.string() + ": " + e.what());
+    }
   }
   if (initial.empty()) throw UsageError(plan_path.string() + ": initial_seeds is empty");
 
@@ -128,6 +159,20 @@ int replay_decide_command(const ReplayOptions& o) {
       rule->runs_by_scenario[c.scenario] += given;
     }
   }
+  {
+    // What all the folder's seeds up to the maximum decide at the looks' level: what futility can lose.
+    const std::uint64_t first = *std::min_element(initial.begin(), initial.end());
+    Summary all = full;
+    for (CellSummary& c : all.cells) {
+      std::vector<SeedResult> kept = c.seeds;
+      std::erase_if(kept, [&](const SeedResult& r) { return r.seed < first || r.seed >= first + settings.max_seeds; });
+      c.replace_seeds(std::move(kept));
+    }
+    DecisionSettings at_looks = *decision;
+    at_looks.looks = decide_looks_max(static_cast<int>(initial.size()), settings);
+    report.lost_to_futility = decisions_lost_to_futility(report.freeze.replay, decide_claims(all, at_looks));
+    report.fixed_seed_folder = !o.initial_seeds.empty();
+  }
   const std::string md = decide_replay_markdown(report);
   if (!o.out.empty()) write_file_atomic(o.out, md);
   std::cout << md;
@@ -148,7 +193,16 @@ Command add_replay_decide_command(CLI::App& parent) {
                   "evaluation and with rapid eval-budget's recommendation (core-hours and shares of the fixed design)");
   const CLI::Option* out =
       sub->add_option("--out", o->out, "also write the report to this file (default: print it only)");
-  return {sub, [o, out] {
+  sub->add_option("--initial-seeds", o->initial_seeds,
+                  "A-B: a folder run on fixed seeds, replayed as if these seeds were look 0 and its next ones the blocks");
+  const CLI::Option* block =
+      sub->add_option("--block", o->fixed_plan.block, "with --initial-seeds: seeds per look (default 5)")->check(CLI::Range(1, 1000));
+  const CLI::Option* max_seeds =
+      sub->add_option("--max-seeds", o->fixed_plan.max_seeds, "with --initial-seeds: seeds a cell may reach (default 30)")
+          ->check(CLI::Range(2, 1000));
+  return {sub, [o, out, block, max_seeds] {
+            if (o->initial_seeds.empty() && (block->count() > 0 || max_seeds->count() > 0))
+              throw UsageError("--block and --max-seeds: only with --initial-seeds (a --decide folder has its own)");
             if (out->count() > 0) check_output_file("--out", o->out);
             return replay_decide_command(*o);
           }};

@@ -167,6 +167,18 @@ void write_priced(std::ostringstream& md, const DecideReplayReport& r) {
 
 }  // namespace
 
+std::vector<std::string> decisions_lost_to_futility(const LookReplay& replay, const Decisions& all) {
+  std::vector<std::string> lost;
+  for (const Comparison& c : all.comparisons) {
+    if (c.outcome == ComparisonOutcome::kUndecided) continue;
+    const auto frozen = replay.state.frozen.find(comparison_key(c));
+    if (frozen == replay.state.frozen.end() || frozen->second.frozen.rfind("futile", 0) != 0) continue;
+    lost.push_back(c.where + ", " + c.metric + ", " + c.x + " vs " + c.y + ": " + outcome_name(c.outcome) + " on all seeds (" +
+                   frozen->second.frozen + ")");
+  }
+  return lost;
+}
+
 std::string decide_replay_markdown(const DecideReplayReport& r) {
   std::ostringstream md;
   const long fixed_max = static_cast<long>(r.cells) * r.freeze.settings.max_seeds;
@@ -196,6 +208,13 @@ std::string decide_replay_markdown(const DecideReplayReport& r) {
   if (r.published_looks.is_array() && !r.published_looks.empty())
     md << "| the folder's own run (decide.json) | " << r.published_looks.size() << " | | | | "
        << look_verdicts_text(r.published_looks.back()) << " |\n";
+  if (r.fixed_seed_folder)
+    md << "\nThis folder ran its seeds without looks; the replay takes its first " << r.initial_seeds
+       << " seeds as look 0 and its next ones, in order, as the blocks.\n";
+  md << "\nDecisions lost to futility (comparisons freeze froze as futile that all the folder's seeds, up to the "
+        "maximum, decide at the looks' level α/K): "
+     << r.lost_to_futility.size() << (r.lost_to_futility.empty() ? ".\n" : ":\n\n");
+  for (const std::string& line : r.lost_to_futility) md << "- " << line << "\n";
   if (!r.costs.empty()) write_priced(md, r);
   for (const RuleReplay* rule : {&r.freeze, &r.redecide}) {
     md << "\n## " << look_rule_name(rule->settings.rule) << ": look by look\n\n| look | verdicts | then |\n|---|---|---|\n";

@@ -73,7 +73,15 @@ struct DecideReplayReport {
   std::map<std::string, ScenarioRunCost> costs;
   nlohmann::json published_looks;  // decide.json's looks as the folder's own run made them
   RuleReplay redecide, freeze;
+  // The comparisons freeze froze as futile that all the folder's seeds (up to the maximum) decide at
+  // the looks' level α/K: the decisions futility would have lost (issue #66), one line each.
+  std::vector<std::string> lost_to_futility;
+  bool fixed_seed_folder = false;  // a folder run on fixed seeds, replayed as if its first were look 0
 };
+
+// The comparisons `replay` froze as futile that `all` (the folder decided on all its seeds, at the
+// looks' level) decides, as "where, metric, x vs y: outcome (futile at …)".
+std::vector<std::string> decisions_lost_to_futility(const LookReplay& replay, const Decisions& all);
 
 // decide-replay.md: the two rules' looks, runs and verdicts side by side, and the folder's own.
 std::string decide_replay_markdown(const DecideReplayReport& r);

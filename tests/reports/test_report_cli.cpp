@@ -146,6 +146,26 @@ TEST_F(ReportCliTest, DecideAnalysesPrintAndWriteOnlyWhereAsked) {
   ASSERT_EQ(out.exit_code, 0) << out.text;
   EXPECT_TRUE(std::filesystem::exists(md));
 
+  // Issue #66: a folder run on fixed seeds replayed as if its first seeds were look 0 (the
+  // confirmatory study's futility replay), with the decisions futility would have lost.
+  const std::filesystem::path fixed_seeds = std::filesystem::path(RAPID_SOURCE_DIR) / "results" / "paper-flow-recheck";
+  const auto fixed_before = listing(fixed_seeds);
+  out = rapid_cli("replay-decide " + fixed_seeds.string() + " --initial-seeds 100-104 --max-seeds 10", true);
+  ASSERT_EQ(out.exit_code, 0) << out.text;
+  EXPECT_NE(out.text.find("the replay takes its first 5 seeds as look 0"), std::string::npos) << out.text;
+  EXPECT_NE(out.text.find("| fixed, 10 seeds | 1 | 390 | 100 % |"), std::string::npos) << out.text;
+  EXPECT_NE(out.text.find("Decisions lost to futility ("), std::string::npos) << out.text;
+  EXPECT_EQ(listing(fixed_seeds), fixed_before);
+  for (const std::string bad : {"replay-decide " + committed.string() + " --initial-seeds 0-9",
+                                "replay-decide " + committed.string() + " --block 3",
+                                "replay-decide " + fixed_seeds.string() + " --initial-seeds 9-1",
+                                "replay-decide " + fixed_seeds.string() + " --initial-seeds 100-109 --max-seeds 5",
+                                "replay-decide " + fixed_seeds.string()}) {
+    out = rapid_cli(bad, true);
+    EXPECT_EQ(out.exit_code, 2) << bad << ": " << out.text;
+    EXPECT_EQ(std::count(out.text.begin(), out.text.end(), '\n'), 1) << bad << ": " << out.text;
+  }
+
   // A sweep folder with no ok seed: nothing to simulate, said in one line, nothing written.
   const std::filesystem::path empty = scratch.path() / "empty";
   report_test::write_grid(empty, report_test::make_grid("empty", {"pendulum"}, {"initial"}, {"rapid-rl", "ddpg"}, {0, 1}));
