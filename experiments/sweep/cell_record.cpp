@@ -70,9 +70,10 @@ CellRecord read_cell_record(const SweepFolder& folder, const SweepJob& cell) {
     out.hash_checked = false;  // the dataset is gone: the record cannot be checked
   }
   // A run is ok only when the attempt that wrote its record is (issue #67): an external command may
-  // write a valid record and then fail. The outcome is of the last attempt; restored records have none.
+  // write a valid record and then exit 1. The outcome is of the last attempt (restored records have
+  // none). An attempt refused as bad input (exit 2) or killed wrote no record: an ok one is older.
   if (out.status == "ok")
-    if (const std::optional<Outcome> o = read_outcome(folder, cell); o && o->state != "ok") {
+    if (const std::optional<Outcome> o = read_outcome(folder, cell); o && o->state == "failed" && o->exit_code == 1) {
       out.status = "failed";
       out.error = "its record says ok, but the attempt that wrote it failed: " + o->error;
     }
