@@ -105,27 +105,10 @@ int replay_decide_command(const ReplayOptions& o) {
   if (initial.empty()) throw UsageError(plan_path.string() + ": initial_seeds is empty");
 
   DecideReplayReport report;
-  Summary full;
-  double run_s = 0.0, runs = 0.0;
   std::error_code ec;
   report.from_records = fs::is_directory(dir / "jobs", ec);
-  try {
-    if (report.from_records) {
-      SummaryOptions options;
-      options.dataset_stats = false;
-      full = build_summary(dir, options);
-      run_s = full.provenance.run_wall_s;
-      runs = full.provenance.runs;
-    } else {
-      const ReportFolder reports = read_report_folder(dir, dir);
-      full = summary_of_reports(reports);
-      const nlohmann::json provenance = reports.summary.value("provenance", nlohmann::json::object());
-      run_s = provenance.value("run_wall_s", 0.0);
-      runs = provenance.value("runs", 0.0);
-    }
-  } catch (const std::invalid_argument& e) {
-    throw UsageError("FOLDER: " + std::string(e.what()));
-  }
+  const Summary full = check_option("FOLDER", [&] { return folder_results(dir); });
+  const double run_s = full.provenance.run_wall_s, runs = full.provenance.runs;
   const std::optional<DecisionSettings> decision = load_decision_settings(full.grid.profile);
   if (!decision) throw UsageError("FOLDER: the grid's profile '" + full.grid.profile + "' has no decision rule (decisions.json)");
 

@@ -14,7 +14,6 @@
 #include "experiments/report/decide_replay.hpp"
 #include "experiments/report/decide_simulation.hpp"
 #include "experiments/report/decisions.hpp"
-#include "experiments/report/report_folder.hpp"
 #include "experiments/report/summarize.hpp"
 #include "experiments/sweep/state.hpp"
 
@@ -32,18 +31,13 @@ struct SimulateOptions {
   DecideSettings plan;
 };
 
-// The folder's cells with their per-seed results: from its records, or from a committed reports
-// folder (whose per-seed BC losses are not committed: C6 has no values there).
+// The folder's cells with their per-seed results (report/decide_replay.hpp's folder_results), decided
+// as its summary is: a committed reports folder's have no decisions of their own until decided here.
 Summary observed_cells(const fs::path& dir) {
-  std::error_code ec;
-  if (fs::is_directory(dir / "jobs", ec)) {
-    SummaryOptions options;
-    options.dataset_stats = false;
-    return build_summary(dir.string(), options);
-  }
-  Summary s = summary_of_reports(read_report_folder(dir, dir));
-  if (const std::optional<DecisionSettings> decision = load_decision_settings(s.grid.profile))
-    s.decisions = decide_claims(s, *decision);
+  Summary s = folder_results(dir);
+  if (!s.decisions)
+    if (const std::optional<DecisionSettings> decision = load_decision_settings(s.grid.profile))
+      s.decisions = decide_claims(s, *decision);
   return s;
 }
 

@@ -116,7 +116,21 @@ Summary summary_of_reports(const ReportFolder& folder) {
     s.cells.push_back(std::move(c));
   }
   build_table_rows(s);
+  // What the runs cost, for core-hours: the provenance the folder's summary recorded.
+  const nlohmann::json provenance = folder.summary.value("provenance", nlohmann::json::object());
+  s.provenance.run_wall_s = provenance.value("run_wall_s", 0.0);
+  s.provenance.runs = provenance.value("runs", 0);
   return s;
+}
+
+Summary folder_results(const std::filesystem::path& dir) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(dir / "jobs", ec)) {
+    SummaryOptions options;
+    options.dataset_stats = false;
+    return build_summary(dir.string(), options);
+  }
+  return summary_of_reports(read_report_folder(dir, dir));
 }
 
 

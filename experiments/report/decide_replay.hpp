@@ -38,6 +38,10 @@ LookReplay replay_folder_looks(const Summary& full, const std::vector<std::uint6
 // in such a folder: C6's comparisons have no values there.
 Summary summary_of_reports(const ReportFolder& folder);
 
+// A folder's per-seed results, for replaying or simulating its looks: its records when it has them
+// (jobs/), else its committed reports (summary_of_reports). Throws std::invalid_argument.
+Summary folder_results(const std::filesystem::path& dir);
+
 // A folder's looks replayed under both rules (`rapid replay-decide`): what each spent and decided.
 struct RuleReplay {
   DecideSettings settings;

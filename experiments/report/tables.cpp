@@ -389,14 +389,29 @@ std::string table_csv(const Summary& s) {
   return out.str();
 }
 
+namespace {
+
+// The per-seed CSVs' identity of a cell, as their header names it: scenario, dataset (none for
+// ddpg), algo and one column per grid axis.
+std::string cell_csv_header(const Summary& s) {
+  std::string header = "scenario,dataset,algo";
+  for (const GridAxis& axis : s.grid.axes) header += "," + axis.key;
+  return header;
+}
+
+std::string cell_csv_prefix(const Summary& s, const CellSummary& c) {
+  std::string prefix = c.scenario + "," + (c.dataset.empty() ? sweep_files::kNoDataset : c.dataset) + "," + c.algo;
+  for (const GridAxis& axis : s.grid.axes) prefix += "," + axis_text(c.axis, axis.key);
+  return prefix;
+}
+
+}  // namespace
+
 std::string finals_csv(const Summary& s) {
   std::ostringstream out;
-  out << "scenario,dataset,algo";
-  for (const GridAxis& axis : s.grid.axes) out << "," << axis.key;
-  out << ",seed,status,final_return,final_episodes\n";
+  out << cell_csv_header(s) << ",seed,status,final_return,final_episodes\n";
   for (const CellSummary& c : s.cells) {
-    std::string prefix = c.scenario + "," + (c.dataset.empty() ? sweep_files::kNoDataset : c.dataset) + "," + c.algo;
-    for (const GridAxis& axis : s.grid.axes) prefix += "," + axis_text(c.axis, axis.key);
+    const std::string prefix = cell_csv_prefix(s, c);
     for (const SeedResult& r : c.seeds)
       out << prefix << "," << r.seed << "," << r.status << "," << exact_number(r.final_return) << ","
           << (r.final_return ? std::to_string(r.final_episodes) : "") << "\n";
@@ -406,12 +421,9 @@ std::string finals_csv(const Summary& s) {
 
 std::string runs_csv(const Summary& s) {
   std::ostringstream out;
-  out << "scenario,dataset,algo";
-  for (const GridAxis& axis : s.grid.axes) out << "," << axis.key;
-  out << ",seed,step,return\n";
+  out << cell_csv_header(s) << ",seed,step,return\n";
   for (const CellSummary& c : s.cells) {
-    std::string prefix = c.scenario + "," + (c.dataset.empty() ? sweep_files::kNoDataset : c.dataset) + "," + c.algo;
-    for (const GridAxis& axis : s.grid.axes) prefix += "," + axis_text(c.axis, axis.key);
+    const std::string prefix = cell_csv_prefix(s, c);
     for (const SeedResult& r : c.seeds)
       for (const auto& [step, ret] : r.eval)
         out << prefix << "," << r.seed << "," << exact_number(step) << "," << exact_number(ret) << "\n";
