@@ -1,13 +1,15 @@
 // scripts/campaign-records (docs/sweeps.md, "A campaign that outlives its machine"): the records a
 // finished part of a sweep left, saved into an archive and restored into a fresh folder on another
 // machine, make the same sweep command run nothing it already ran; records of another code
-// revision, or a restore over files that differ, are refused with exit 2 and nothing written.
+// revision, or a restore over files that differ, are refused with exit 2 and nothing written; the
+// script writes only where it is told, through no name another user could plant a link at.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <map>
 #include <string>
 
+#include "core/atomic_file.hpp"
 #include "tests/sweep/sweep_test_util.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
@@ -124,6 +126,68 @@ TEST_F(CampaignRecords, RestoreNeverOverwritesAFileThatDiffers) {
   EXPECT_NE(refused.output.find("exists and differs"), std::string::npos) << refused.output;
   EXPECT_EQ(std::count(refused.output.begin(), refused.output.end(), '\n'), 1) << refused.output;
   EXPECT_EQ(record_identities(second_), before);
+}
+
+// Issue #67: a restore writes nothing outside its folder, even where a folder inside it is a
+// symbolic link to elsewhere; and a folder that is a file is one line, not a traceback.
+TEST_F(CampaignRecords, RestoreWritesOnlyInsideItsFolder) {
+  ASSERT_EQ(run_script("save " + first_.string() + " " + archive_.string()).exit_code, 0);
+  const fs::path elsewhere = dir_.path() / "elsewhere";
+  fs::create_directories(elsewhere);
+  fs::create_directories(second_);
+  fs::create_directory_symlink(elsewhere, second_ / "jobs");
+  const Result refused = run_script("restore " + archive_.string() + " " + second_.string());
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("is a symbolic link; restore writes only inside"), std::string::npos) << refused.output;
+  EXPECT_TRUE(fs::is_empty(elsewhere));
+  EXPECT_FALSE(fs::exists(second_ / "grid.json"));
+
+  const fs::path a_file = dir_.path() / "a-file";
+  write_file_atomic(a_file.string(), "kept\n");
+  const Result onto_file = run_script("restore " + archive_.string() + " " + a_file.string());
+  EXPECT_EQ(onto_file.exit_code, 2) << onto_file.output;
+  EXPECT_EQ(onto_file.output, "campaign-records: '" + a_file.string() + "' exists and is not a folder; restore into a fresh folder\n");
+  EXPECT_EQ(read_file(a_file.string()), "kept\n");
+}
+
+// Issue #67: the temporary files of save and restore have names nobody can guess, so a symbolic
+// link planted at the old names (ARCHIVE.tmp, TARGET.tmp) is never written through.
+TEST_F(CampaignRecords, APlantedLinkAtATemporaryNameIsNotFollowed) {
+  const fs::path victim = dir_.path() / "victim";
+  write_file_atomic(victim.string(), "untouched\n");
+  fs::create_directories(archive_.parent_path());
+  fs::create_symlink(victim, archive_.string() + ".tmp");
+  ASSERT_EQ(run_script("save " + first_.string() + " " + archive_.string()).exit_code, 0);
+  fs::create_directories(second_);
+  fs::create_symlink(victim, (second_ / "grid.json").string() + ".tmp");
+  const Result restored = run_script("restore " + archive_.string() + " " + second_.string());
+  ASSERT_EQ(restored.exit_code, 0) << restored.output;
+  EXPECT_EQ(read_file(victim.string()), "untouched\n");
+  EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(second_ / "grid.json")));
+  for (const auto& entry : fs::recursive_directory_iterator(archive_.parent_path()))
+    EXPECT_TRUE(entry.path() == archive_ || entry.path().string() == archive_.string() + ".tmp") << entry.path();
+}
+
+// Issue #67: an archive member far larger than any campaign file is refused before it is read
+// (a 5 GB member of zeros ended in MemoryError and a traceback), and a full standard output is
+// one line and exit 1, not the interpreter's complaint.
+TEST_F(CampaignRecords, OversizedMembersAndAFullOutputAreOneLine) {
+  const fs::path big = dir_.path() / "big";
+  fs::create_directories(big / "jobs/a");
+  const test::CliOutput made = test::shell_output("cd " + big.string() +
+      " && head -c 70000000 /dev/zero > jobs/a/record.json && tar -cJf ../big.tar.xz jobs/a/record.json 2>&1");
+  ASSERT_EQ(made.exit_code, 0) << made.text;
+  const Result listed = run_script("list " + (dir_.path() / "big.tar.xz").string());
+  EXPECT_EQ(listed.exit_code, 2) << listed.output;
+  EXPECT_NE(listed.output.find("'jobs/a/record.json' holds 70000000 bytes, more than a campaign's file"), std::string::npos)
+      << listed.output;
+  EXPECT_EQ(std::count(listed.output.begin(), listed.output.end(), '\n'), 1) << listed.output;
+
+  ASSERT_EQ(run_script("save " + first_.string() + " " + archive_.string()).exit_code, 0);
+  const test::CliOutput full = test::shell_output(std::string(RAPID_SOURCE_DIR) + "/scripts/campaign-records list " +
+                                                  archive_.string() + " 2>&1 >/dev/full");
+  EXPECT_EQ(full.exit_code, 1) << full.text;
+  EXPECT_EQ(full.text, "campaign-records: cannot write to standard output: No space left on device\n");
 }
 
 }  // namespace
