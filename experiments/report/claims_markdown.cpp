@@ -126,19 +126,6 @@ std::string baseline_decisions_markdown(const Summary& s) {
   return out.str();
 }
 
-// Text for a Markdown table cell or line: no markup, no line break, no column break (a grid's own
-// claim statement is the user's text).
-std::string plain_cell(std::string text) {
-  for (char& ch : text)
-    if (ch == '\n' || ch == '\r' || ch == '|') ch = ' ';
-  std::string out;
-  for (const char ch : text) {
-    if (ch == '<' || ch == '>' || ch == '*' || ch == '_' || ch == '`' || ch == '[' || ch == ']' || ch == '#') out += '\\';
-    out += ch;
-  }
-  return out;
-}
-
 // The aggregate claims (decide_aggregate_claims): each contrast's estimate, interval, both p-values
 // raw and Holm-adjusted, and its outcome. First in claims.md: they are the registered question.
 std::string aggregate_decisions_markdown(const Summary& s) {
@@ -167,15 +154,16 @@ std::string aggregate_decisions_markdown(const Summary& s) {
     const std::string id = i < specs.size() ? specs[i].id : "";
     const double half = std::isfinite(c.d.se) && c.d.df > 0 ? student_t_quantile(0.975, c.d.df) * c.d.se : NAN;
     const double sd = std::isfinite(c.d.se) ? c.d.se * std::sqrt(static_cast<double>(c.xs.size())) : NAN;
-    out << "| " << plain_cell(id) << " | " << c.x << " − " << c.y << " | " << plain_cell(c.where.substr(c.where.find(": ") + 2))
+    out << "| " << markdown_text(id) << " | " << c.x << " − " << c.y << " | " << markdown_text(c.where.substr(c.where.find(": ") + 2))
         << " | " << short_number(c.d.diff) << " | "
-        << (std::isfinite(half) ? "[" + short_number(c.d.diff - half) + ", " + short_number(c.d.diff + half) + "]" : "—")
+        << (std::isfinite(half) ? std::string("[").append(short_number(c.d.diff - half)).append(", ").append(short_number(c.d.diff + half)).append("]")
+                                : std::string("—"))
         << " | " << short_number(sd) << " | " << p_text(c.p_difference) << " (" << p_text(adjusted[2 * i]) << ") | "
         << p_text(c.p_equivalence) << " (" << p_text(adjusted[2 * i + 1]) << ") | " << outcome_text(c, c.outcome) << " | "
         << (c.seeds_needed ? std::to_string(*c.seeds_needed) : "—") << " |\n";
   }
   out << "\n";
-  for (const AggregateClaimSpec& a : specs) out << "- " << plain_cell(a.id) << ": " << plain_cell(a.statement) << "\n";
+  for (const AggregateClaimSpec& a : specs) out << "- " << markdown_text(a.id) << ": " << markdown_text(a.statement) << "\n";
   return out.str();
 }
 
@@ -188,17 +176,17 @@ std::string decided_claims_markdown(const Summary& s) {
       << "| Claim | Verdict | Why | Point-mean verdict |\n|---|---|---|---|\n";
   for (const DecidedClaim& c : d.claims) {
     const ClaimResult* pm = point_mean_claim(s, c.id);
-    out << "| " << c.id << " | " << c.verdict << " | " << c.reason << " | " << (pm ? pm->verdict : "—") << " |\n";
+    out << "| " << markdown_text(c.id) << " | " << c.verdict << " | " << c.reason << " | " << (pm ? pm->verdict : "—") << " |\n";
   }
   for (const DecidedClaim& c : d.claims) {
     const ClaimResult* pm = point_mean_claim(s, c.id);
-    out << "\n## " << c.id << ": " << c.verdict << "\n\n";
-    if (pm) out << "Claim: " << pm->statement << "\n\n";
+    out << "\n## " << markdown_text(c.id) << ": " << c.verdict << "\n\n";
+    if (pm) out << "Claim: " << markdown_text(pm->statement) << "\n\n";
     out << "Decided: " << c.reason << ".\n";
     const std::string table = comparisons_table(d, c.comparisons, /*claim_column=*/true);
     if (!table.empty()) out << "\n" << table;
     if (pm) {
-      out << "\nPoint-mean check (not a decision): " << pm->verdict << ". " << pm->definition << " " << pm->reason << ".\n";
+      out << "\nPoint-mean check (not a decision): " << pm->verdict << ". " << markdown_text(pm->definition) << " " << pm->reason << ".\n";
       const std::string means = markdown_table(*pm);
       if (!means.empty()) out << "\n" << means;
     }
@@ -218,11 +206,11 @@ std::string claims_markdown(const Summary& s) {
          "grid does not contain what the claim is about. A row whose cells have no ok seed counts against the claim. "
          "With few seeds a verdict is weak evidence: look at the intervals in summary.json and table.md.\n\n"
       << non_paper_note(s) << "| Claim | Verdict | Why |\n|---|---|---|\n";
-  for (const ClaimResult& c : s.claims) out << "| " << c.id << " | " << c.verdict << " | " << c.reason << " |\n";
+  for (const ClaimResult& c : s.claims) out << "| " << markdown_text(c.id) << " | " << c.verdict << " | " << c.reason << " |\n";
   for (const ClaimResult& c : s.claims) {
-    out << "\n## " << c.id << ": " << c.verdict << "\n\n"
-        << "Claim: " << c.statement << "\n\n"
-        << "Checked: " << c.definition << "\n\n"
+    out << "\n## " << markdown_text(c.id) << ": " << c.verdict << "\n\n"
+        << "Claim: " << markdown_text(c.statement) << "\n\n"
+        << "Checked: " << markdown_text(c.definition) << "\n\n"
         << "Result: " << c.reason << ".\n";
     const std::string table = markdown_table(c);
     if (!table.empty()) out << "\n" << table;

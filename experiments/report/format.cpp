@@ -19,6 +19,18 @@ std::string fixed(double x, int decimals) {
   return s;
 }
 
+std::string markdown_text(std::string text) {
+  for (char& ch : text)
+    if (ch == '\n' || ch == '\r' || ch == '|') ch = ' ';
+  std::string out;
+  for (const char ch : text) {
+    if (ch == '<' || ch == '>' || ch == '*' || ch == '_' || ch == '`' || ch == '[' || ch == ']' || ch == '#' || ch == '\\')
+      out += '\\';
+    out += ch;
+  }
+  return out;
+}
+
 std::string share_text(double part, double whole, int decimals) {
   if (!(std::isfinite(part) && std::isfinite(whole)) || whole == 0.0) return "—";
   return fixed(100.0 * part / whole, decimals) + " %";

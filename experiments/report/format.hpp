@@ -17,6 +17,10 @@ std::string run_cost_text(double median_s, double min_s, double max_s);
 // A share as a percentage with `decimals` ("42.0 %"); "—" when `whole` is zero or either is not
 // finite, so no report prints "nan %" or "inf %" (issue #67).
 std::string share_text(double part, double whole, int decimals = 1);
+// Text for a Markdown table cell or line that is a user's or a file's (a claim's statement, a
+// folder's name, a --labels name): no markup, no line break, no column break, so it cannot add a
+// heading, a link or a tag to a report (issue #67; report.html escapes the same text as HTML).
+std::string markdown_text(std::string text);
 // Shortest text that reads back as the same double (CSV, machine use); empty for nullopt/NaN.
 std::string exact_number(std::optional<double> x);
 

@@ -99,8 +99,8 @@ void write_claims(std::ostringstream& md, const json& now, const json& before, c
     const auto it = earlier.find(id);
     const std::string was = it == earlier.end() ? "—" : it->second.at("verdict").get<std::string>();
     if (was != verdict) ++changed;
-    md << "| " << id << " | " << (was != verdict ? "**" + verdict + "**" : verdict) << " | " << was << " | "
-       << claim.at("reason").get<std::string>() << " |\n";
+    md << "| " << markdown_text(id) << " | " << (was != verdict ? "**" + markdown_text(verdict) + "**" : markdown_text(verdict))
+       << " | " << markdown_text(was) << " | " << markdown_text(claim.at("reason").get<std::string>()) << " |\n";
   }
   md << "\n" << changed << " verdict" << (changed == 1 ? "" : "s") << " changed (in bold).\n\n";
 }
@@ -124,8 +124,8 @@ void write_baselines(std::ostringstream& md, const json& now, const json& before
       ++same;
       continue;
     }
-    lines.push_back("| " + c.at("where").get<std::string>() + " | " + c.at("x").get<std::string>() + " vs " +
-                    c.at("y").get<std::string>() + " | " + is + " | " + was + " | " +
+    lines.push_back("| " + markdown_text(c.at("where").get<std::string>()) + " | " + markdown_text(c.at("x").get<std::string>()) +
+                    " vs " + markdown_text(c.at("y").get<std::string>()) + " | " + markdown_text(is) + " | " + markdown_text(was) + " | " +
                     short_number(optional_number(c, "p_difference")) + " |");
   }
   const auto family_size = [](const json& summary) {
@@ -146,8 +146,10 @@ void write_baselines(std::ostringstream& md, const json& now, const json& before
 
 }  // namespace
 
-std::string side_by_side_markdown(const json& now, const std::string& now_label, const json& before,
-                                  const std::string& before_label) {
+std::string side_by_side_markdown(const json& now, const std::string& now_name, const json& before,
+                                  const std::string& before_name) {
+  // The labels are a user's (--labels) or a folder's name: text, never markup (issue #67).
+  const std::string now_label = markdown_text(now_name), before_label = markdown_text(before_name);
   const Table a = table_of(now), b = table_of(before);
   const bool shared = std::any_of(a.rows.begin(), a.rows.end(), [&](const auto& row) {
     return b.cells.count(row.first + "/" + row.second) > 0;

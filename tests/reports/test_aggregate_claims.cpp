@@ -201,5 +201,27 @@ TEST_F(AggregateClaims, SummarizeReportsThemFirst) {
   EXPECT_EQ(html.find("<b>against</b>"), std::string::npos);  // escaped
 }
 
+// Issue #67: a grid's own claim's statement and definition are the user's text, and reach claims.md
+// as text: a tag stays a tag's characters, a line break cannot start a heading.
+TEST_F(AggregateClaims, AGridClaimsTextIsNeverMarkup) {
+  const nlohmann::json mine = {{"id", "G1"},
+                               {"statement", "RAPID-RL <script>x()</script> above RLPD\n# Injected heading"},
+                               {"definition", "[link](http://x) | *bold*"},
+                               {"kind", "every_row"},
+                               {"x", "rapid-rl"},
+                               {"y", "rlpd"},
+                               {"direction", "above"}};
+  make(nlohmann::json::array({mine}), [](const std::string&, const std::string& algo, int seed) {
+    return std::optional<double>(algo == "rapid-rl" ? 100.0 + kDelta * kD[seed] : 100.0);
+  });
+  const test::CliOutput out = test::rapid_cli("summarize " + sweep.string() + " --no-animations", true);
+  ASSERT_EQ(out.exit_code, 0) << out.text;
+  const std::string md = report_test::read_text(sweep / "claims.md");
+  EXPECT_NE(md.find("Claim: RAPID-RL \\<script\\>x()\\</script\\> above RLPD \\# Injected heading"), std::string::npos) << md;
+  EXPECT_NE(md.find("\\[link\\](http://x)   \\*bold\\*"), std::string::npos) << md;
+  EXPECT_EQ(md.find("<script>"), std::string::npos) << md;
+  EXPECT_EQ(md.find("\n# Injected"), std::string::npos) << md;
+}
+
 }  // namespace
 }  // namespace rapid

@@ -113,6 +113,17 @@ TEST(SideBySideCli, PrintsOrWritesAndRefusesBadInputWithOneLine) {
   one_line_exit_2(rapid_cli("beside " + scratch.path().string() + " " + kRerun.string(), true), "NOW: ");
   one_line_exit_2(rapid_cli("beside " + kRerun.string() + " " + scratch.path().string(), true), "BEFORE: ");
   one_line_exit_2(rapid_cli("beside " + pair + " --labels onlyone", true), "--labels: ");
+
+  // Issue #67: a label is text, never markup, whether given or a folder's name.
+  const std::string marked = rapid_cli("beside " + pair + " --labels '<script>x()</script>|x,b'").text;
+  EXPECT_TRUE(has(marked, "# \\<script\\>x()\\</script\\> x beside b")) << marked;
+  EXPECT_FALSE(has(marked, "<script>")) << marked;
+  const fs::path odd = scratch.path() / "<img src=x>";
+  fs::create_directories(odd);
+  fs::copy_file(kHandicapped / "summary.json", odd / "summary.json");
+  const std::string by_folder = rapid_cli("beside " + kRerun.string() + " '" + odd.string() + "'").text;
+  EXPECT_TRUE(has(by_folder, "beside \\<img src=x\\>")) << by_folder;
+  EXPECT_FALSE(has(by_folder, "<img src=x>")) << by_folder;
   one_line_exit_2(rapid_cli("beside " + pair + " --out " + (scratch.path() / "missing" / "x.md").string(), true), "--out: ");
   one_line_exit_2(rapid_cli("beside " + pair + " --out " + scratch.path().string(), true), "--out: ");
 
