@@ -4,6 +4,7 @@
 // sweep folders, and writes tuned.json, tuned-grid.json and tune.md when every search has its
 // winner. Resumable: the searches replay from the records, so a rerun goes on where it stopped.
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <set>
 #include <stdexcept>
@@ -48,6 +49,20 @@ int print_plan(const TunePlan& plan, const std::string& bench_path, const std::v
   }
   if (!bench.is_object() || !bench.contains("run_costs") || !bench["run_costs"].is_array())
     throw UsageError("--plan: " + bench_path + " has no run_costs (write it with rapid bench --json FILE)");
+  for (std::size_t i = 0; i < bench["run_costs"].size(); ++i) {  // a cost that is not a number is the file's fault
+    const nlohmann::json& cost = bench["run_costs"][i];
+    const std::string at = "--plan: " + bench_path + ": run_costs[" + std::to_string(i) + "]";
+    if (!cost.is_object()) throw UsageError(at + ": expected an object, got " + json_excerpt(cost));
+    for (const char* key : {"train_s", "eval_s_max"})
+      if (cost.contains(key) && !(cost[key].is_number() && std::isfinite(cost[key].get<double>()) && cost[key].get<double>() >= 0))
+        throw UsageError(at + "." + key + ": expected a number of seconds, got " + json_excerpt(cost[key]));
+    for (const char* key : {"scenario", "algo"})
+      if (cost.contains(key) && !cost[key].is_string())
+        throw UsageError(at + "." + key + ": expected a name, got " + json_excerpt(cost[key]));
+  }
+  if (!bench.contains("profile") || !bench["profile"].is_string())
+    throw UsageError("--plan: " + bench_path + ": profile: expected the profile's name, got " +
+                     (bench.contains("profile") ? json_excerpt(bench["profile"]) : std::string("nothing")));
   if (bench.value("profile", "") != plan.grid.profile)
     throw UsageError("--plan: " + bench_path + " measured profile '" + bench.value("profile", "?") + "', the grid's is '" +
                      plan.grid.profile + "'");
@@ -150,6 +165,7 @@ int tune_command(const TuneOptions& o) {
                 << (dir / "tuned.json").string() << ", " << (dir / "tuned-grid.json").string() << "\n";
       return kExitOk;
     }
+    std::vector<TrialJobs> unsuccessful;  // trials whose sweep did not end ok: a diverged run, or a failed one
     for (const TrialJobs& trials : missing) {
       const fs::path folder = candidate_dir(dir, trials.candidate);
       // Candidate 0 starts from --reuse-datasets; the others copy its references and datasets once
@@ -163,10 +179,22 @@ int tune_command(const TuneOptions& o) {
       const int code = sweep_selection(plan.candidates[static_cast<std::size_t>(trials.candidate)], folder.string(),
                                        trials.selection, from, o.jobs, o.backend);
       if (code == kExitInterrupted) return code;
-      if (code != kExitOk) {
-        std::cerr << "rapid tune: trials of candidate " << trials.candidate << " failed (rapid status " << folder.string()
-                  << "); run the same command again to retry them\n";
-        return kExitFailed;
+      if (code != kExitOk) unsuccessful.push_back(trials);
+    }
+    // A diverged run is a result (replay_tune scores it the worst), so its trials are no longer
+    // missing; a trial still missing after its sweep has a failed run, to retry.
+    if (!unsuccessful.empty()) {
+      const std::vector<TrialJobs> still = missing_trials(plan, replay_tune(dir, plan), only);
+      for (const TrialJobs& trials : unsuccessful) {
+        const bool retry = std::any_of(still.begin(), still.end(), [&](const TrialJobs& s) {
+          return s.candidate == trials.candidate && s.selection.cells == trials.selection.cells &&
+                 s.selection.seeds == trials.selection.seeds;
+        });
+        if (retry) {
+          std::cerr << "rapid tune: trials of candidate " << trials.candidate << " failed (rapid status "
+                    << candidate_dir(dir, trials.candidate).string() << "); run the same command again to retry them\n";
+          return kExitFailed;
+        }
       }
     }
     if (o.backend == "slurm") {

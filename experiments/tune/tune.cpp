@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -38,7 +39,7 @@ std::vector<std::uint64_t> seeds_of_unit(const SearchSpace& space, const Grid& g
 
 }  // namespace
 
-fs::path candidate_dir(const fs::path& dir, int k) { return dir / ("c" + std::to_string(k)); }
+fs::path candidate_dir(const fs::path& dir, int k) { return dir / std::string("c").append(std::to_string(k)); }
 
 TunePlan plan_tune(const Grid& grid, const SearchSpace& space) {
   if (!grid.axes.empty())
@@ -107,13 +108,16 @@ std::vector<TrialScores> replay_tune(const fs::path& dir, const TunePlan& plan) 
           for (std::uint64_t seed : seeds_of_unit(space, plan.grid, t.algo, u)) {
             const SweepJob* job = jobs.at({cell_key(t.scenario, datasets[d], t.algo), seed});
             const CellRecord r = read_cell_record(folder, *job);
-            if (!r.done()) {
+            const bool diverged = r.status == "diverged" && r.hash_checked;
+            if (!r.done() && !diverged) {
               gap[d] = true;
               continue;
             }
             ++t.runs;
-            t.wall_s += r.record->at("timing").value("wall_s", 0.0);
-            if (!gap[d]) returns[d].push_back(r.record->at("final").at("return_mean").get<double>());
+            t.wall_s += r.record->value("timing", json::object()).value("wall_s", 0.0);
+            if (!gap[d])
+              returns[d].push_back(diverged ? -std::numeric_limits<double>::infinity()
+                                            : r.record->at("final").at("return_mean").get<double>());
           }
         const std::size_t needed = seeds_of_unit(space, plan.grid, t.algo, u).size() * static_cast<std::size_t>(u + 1);
         if (std::all_of(returns.begin(), returns.end(), [&](const std::vector<double>& r) { return r.size() >= needed; })) {
@@ -176,6 +180,15 @@ json tuned_grid(const TunePlan& plan, const std::vector<TrialScores>& searches) 
   return doc;
 }
 
+namespace {
+
+// A score as tune.md and tuned.json give it: a diverged candidate's (−∞) is the word "diverged".
+std::string score_text(double score) { return std::isfinite(score) ? fixed(score, 1) : "diverged"; }
+json score_json(double score) { return std::isfinite(score) ? json(score) : json("diverged"); }
+json finite_or_null(const std::vector<double>& values, double value) { return values.empty() ? json() : json(value); }
+
+}  // namespace
+
 void write_tune_results(const fs::path& dir, const TunePlan& plan, const std::vector<TrialScores>& searches) {
   const SearchSpace& space = plan.space;
   json results = json::object();
@@ -189,7 +202,8 @@ void write_tune_results(const fs::path& dir, const TunePlan& plan, const std::ve
   md << " units (a unit: one run per dataset, or " << plan.grid.datasets.size()
      << " runs of DDPG on as many seeds), tuning seeds " << space.seeds.front() << "-" << space.seeds.back()
      << ". Score: the mean over the datasets of the mean final return over a candidate's units. "
-     << "Sensitivity: the spread of the first rung's scores over all candidates (one unit each).\n\n"
+     << "Sensitivity: the spread of the first rung's scores over all candidates (one unit each). A candidate with a "
+        "diverged run scores \"diverged\", below every other, and is left out of the spread.\n\n"
      << "| scenario | algorithm | winner | default score | winner score | units | default's rank at rung 1 | "
         "rung-1 spread (min, max) | rung-1 sd | runs | core-hours |\n|---|---|---|---:|---:|---:|---:|---|---:|---:|---:|\n";
   for (const TrialScores& t : searches) {
@@ -198,25 +212,31 @@ void write_tune_results(const fs::path& dir, const TunePlan& plan, const std::ve
     for (int k = 0; k < space.candidates; ++k) {
       json scores = json::array();
       for (std::size_t i = 0; i < t.state.scores.size(); ++i)
-        scores.push_back(t.state.scores[i][static_cast<std::size_t>(k)] ? json(*t.state.scores[i][static_cast<std::size_t>(k)]) : json());
+        scores.push_back(t.state.scores[i][static_cast<std::size_t>(k)] ? score_json(*t.state.scores[i][static_cast<std::size_t>(k)]) : json());
       trials.push_back({{"candidate", k}, {"overrides", t.overrides[static_cast<std::size_t>(k)]}, {"rung_scores", scores}});
     }
-    std::vector<double> first;
-    for (const auto& s : t.state.scores.front())
-      if (s) first.push_back(*s);
+    std::vector<double> first;  // the rung-1 scores of the candidates that did not diverge
+    int diverged = 0;
+    for (const auto& s : t.state.scores.front()) {
+      if (s && std::isfinite(*s)) first.push_back(*s);
+      diverged += s && !std::isfinite(*s);
+    }
     const double default_first = *t.state.scores.front()[0];
     const long rank = 1 + std::count_if(first.begin(), first.end(), [&](double s) { return s > default_first; });
     const double sd = first.size() > 1 ? std::sqrt(sample_variance(first)) : 0.0;
+    const double low = first.empty() ? NAN : *std::min_element(first.begin(), first.end());
+    const double high = first.empty() ? NAN : *std::max_element(first.begin(), first.end());
     const double winner_score = *t.state.scores[last][static_cast<std::size_t>(t.state.winner)];
     results[t.scenario][t.algo] = {
         {"winner", t.state.winner},
         {"overrides", t.overrides[static_cast<std::size_t>(t.state.winner)]},
-        {"winner_score", winner_score},
-        {"default_score_rung1", default_first},
+        {"winner_score", score_json(winner_score)},
+        {"default_score_rung1", score_json(default_first)},
         {"default_rank_rung1", rank},
-        {"rung1_min", *std::min_element(first.begin(), first.end())},
-        {"rung1_max", *std::max_element(first.begin(), first.end())},
-        {"rung1_sd", sd},
+        {"rung1_diverged", diverged},
+        {"rung1_min", finite_or_null(first, low)},
+        {"rung1_max", finite_or_null(first, high)},
+        {"rung1_sd", finite_or_null(first, sd)},
         {"runs", t.runs},
         {"wall_s", t.wall_s},
         {"trials", trials},
@@ -225,9 +245,11 @@ void write_tune_results(const fs::path& dir, const TunePlan& plan, const std::ve
     total_runs += t.runs;
     md << "| " << t.scenario << " | " << find_algorithm(t.algo).display_name << " | c" << t.state.winner << " "
        << (t.overrides[static_cast<std::size_t>(t.state.winner)].empty() ? "(defaults)" : t.overrides[static_cast<std::size_t>(t.state.winner)].dump())
-       << " | " << fixed(default_first, 1) << " | " << fixed(winner_score, 1) << " | " << space.rungs[last] << " | " << rank << " of "
-       << first.size() << " | " << fixed(*std::min_element(first.begin(), first.end()), 1) << ", "
-       << fixed(*std::max_element(first.begin(), first.end()), 1) << " | " << fixed(sd, 1) << " | " << t.runs << " | "
+       << " | " << score_text(default_first) << " | " << score_text(winner_score) << " | " << space.rungs[last] << " | "
+       << (std::isfinite(default_first) ? std::to_string(rank) + " of " + std::to_string(first.size()) : std::string("—"))
+       << (diverged > 0 ? " (" + std::to_string(diverged) + " diverged)" : "") << " | "
+       << (first.empty() ? std::string("—") : fixed(low, 1) + ", " + fixed(high, 1)) << " | " << (first.empty() ? "—" : fixed(sd, 1))
+       << " | " << t.runs << " | "
        << fixed(t.wall_s / 3600, 2) << " |\n";
   }
   md << "\nIn all: " << total_runs << " runs, " << fixed(total_s / 3600, 2)

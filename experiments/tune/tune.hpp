@@ -40,9 +40,11 @@ struct TrialScores {
   std::string scenario, algo;
   HalvingState state;
   std::vector<nlohmann::json> overrides;  // per candidate
-  int runs = 0;                            // ok runs among the search's trials
+  int runs = 0;                            // finished runs (ok or diverged) among the search's trials
   double wall_s = 0;                       // their training and evaluation time
-  // scores_by_units[k][u]: candidate k's score after u units, where every run is ok
+  // scores_by_units[k][u]: candidate k's score after u units, where every run has finished; a
+  // diverged run is a result, the worst one (its return −∞, so its candidate ranks last), not a
+  // run to retry: training is deterministic and would diverge again.
   std::vector<std::vector<std::optional<double>>> scores_by_units;
 };
 std::vector<TrialScores> replay_tune(const std::filesystem::path& dir, const TunePlan& plan);

@@ -7,6 +7,7 @@
 
 #include <cstdlib>
 
+#include "core/atomic_file.hpp"
 #include "experiments/run/run_config.hpp"
 #include "tests/datasets/dataset_fixtures.hpp"
 #include "tests/sweep/sweep_test_util.hpp"
@@ -111,6 +112,46 @@ TEST(TuneCli, PlanPricesTheSearchesAndCountsWhatTheFolderSpent) {
   EXPECT_EQ(other.exit_code, 2);
   EXPECT_NE(other.output.find("measured profile 'flow', the grid's is '" + std::string(kDefaultProfile) + "'"), std::string::npos)
       << other.output;
+
+  // Issue #67: a cost that is not a number (JSON has no NaN; a file may say "NaN") is one line
+  // naming the field, not nlohmann's exception text.
+  write_json(bench, {{"profile", kDefaultProfile},
+                     {"run_costs", {{{"scenario", "pendulum"}, {"algo", "ddpg"}, {"train_s", "NaN"}, {"eval_s_max", 0.0}}}}});
+  const Result nan_cost = run_rapid(plan);
+  EXPECT_EQ(nan_cost.exit_code, 2) << nan_cost.output;
+  EXPECT_NE(nan_cost.output.find("run_costs[0].train_s: expected a number of seconds, got \"NaN\""), std::string::npos)
+      << nan_cost.output;
+  EXPECT_EQ(nan_cost.output.find("json.exception"), std::string::npos) << nan_cost.output;
+}
+
+// Issue #67: a candidate whose trial diverges is a result, the worst score, not a run to retry (a
+// diverged run diverges again): the search finishes, the defaults win, and the files say which
+// candidates diverged. On 9a761d1 tune exited 1 "run the same command again" forever.
+TEST(TuneCli, ADivergedCandidateIsTheWorstScoreNotARetry) {
+  testing::ScratchDir dir;
+  const TuneFiles in = write_tiny_tune(dir.path());
+  nlohmann::json space = read_json(in.space);
+  space["candidates"] = 3;
+  space["keys"]["actor_lr"] = {{"uniform", {1e300, 1.7e308}}};  // every candidate but the defaults diverges
+  write_json(in.space, space);
+  const fs::path out = dir.path() / "tune";
+  const std::string command = "tune " + in.grid.string() + " --space " + in.space.string() + " --jobs 2 --out " + out.string();
+  const Result r = run_rapid(command);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json search = read_json(out / "tuned.json")["results"]["pendulum"]["ddpg"];
+  EXPECT_EQ(search["winner"], 0) << search.dump();
+  EXPECT_TRUE(search["winner_score"].is_number()) << search.dump();
+  EXPECT_EQ(search["rung1_diverged"], 2);
+  EXPECT_EQ(search["trials"][1]["rung_scores"][0], "diverged");
+  EXPECT_EQ(search["trials"][2]["rung_scores"][0], "diverged");
+  const std::string md = read_file((out / "tune.md").string());
+  EXPECT_NE(md.find("| pendulum | DDPG | c0 (defaults) | "), std::string::npos) << md;
+  EXPECT_NE(md.find("1 of 1 (2 diverged)"), std::string::npos) << md;
+
+  const Result again = run_rapid(command);
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("every search has its winner"), std::string::npos) << again.output;
+  EXPECT_EQ(again.output.find("started"), std::string::npos) << "nothing runs again: " << again.output;
 }
 
 TEST(TuneCli, RefusesOverlappingSeedsAndBadSpacesWritingNothing) {
