@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/removed_on_stop.hpp"
 #include "envs/scenario_hooks.hpp"
 #include "envs/sumo_api.hpp"
 
@@ -63,11 +64,12 @@ std::string write_route_file(const std::string& template_path, const ScenarioSet
   for (const auto& [token, value] : {std::pair{std::string("\"INFLOW\""), settings.inflow},
                                      std::pair{std::string("\"RAMP_INFLOW\""), settings.ramp_inflow}})
     for (auto at = xml.find(token); at != std::string::npos; at = xml.find(token, at))
-      xml.replace(at, token.size(), "\"" + per_second(value) + "\"");
+      xml.replace(at, token.size(), std::string("\"").append(per_second(value)).append("\""));
   // A name no one can guess, created by this call alone (O_EXCL, mode 0600): a predictable name
   // in a shared /tmp let another user's symlink there redirect the write (issue #67).
-  const std::string tail = "-" + std::filesystem::path(template_path).filename().string();
-  std::string path = (std::filesystem::temp_directory_path() / ("rapid-XXXXXX" + tail)).string();
+  // (Strings built by append: GCC 12 warns falsely, -Wrestrict, on "literal" + string here.)
+  const std::string tail = std::string("-").append(std::filesystem::path(template_path).filename().string());
+  std::string path = (std::filesystem::temp_directory_path() / std::string("rapid-XXXXXX").append(tail)).string();
   const int fd = ::mkstemps(path.data(), static_cast<int>(tail.size()));
   if (fd < 0) throw std::runtime_error("cannot create a route file in " + std::filesystem::temp_directory_path().string() +
                                        ": " + std::strerror(errno));
@@ -96,7 +98,10 @@ DrivingEnv::DrivingEnv(std::shared_ptr<const ScenarioDescriptor> scenario, const
 }
 
 DrivingEnv::~DrivingEnv() {
-  if (!route_file_.empty()) std::filesystem::remove(route_file_);
+  if (route_file_.empty()) return;
+  forget_on_stop(route_file_);
+  std::error_code ignored;  // a destructor does not throw: a file already gone is what it wants
+  std::filesystem::remove(route_file_, ignored);
 }
 
 void DrivingEnv::reset(std::uint64_t seed, VecRef obs) {
@@ -104,7 +109,10 @@ void DrivingEnv::reset(std::uint64_t seed, VecRef obs) {
   const ScenarioSettings& settings = settings_;
   const NetworkFiles& network = scenario_->networks.at(settings.network);
   session_config_.net_file = network.net;
-  if (route_file_.empty()) route_file_ = write_route_file(network.routes, settings);
+  if (route_file_.empty()) {
+    route_file_ = write_route_file(network.routes, settings);
+    remove_on_stop(route_file_);  // Ctrl-C runs no destructor (issue #67)
+  }
   session_config_.route_files = {route_file_};
   session_config_.max_depart_delay = settings.max_depart_delay;
   session_config_.additional_files = scenario_->additional_files;
