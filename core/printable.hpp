@@ -11,6 +11,11 @@ namespace rapid {
 // `text` with every control byte (below 0x20, and 0x7f) written as \xNN; other bytes unchanged.
 std::string printable(std::string_view text);
 
+// printable(text) cut to about `max_bytes` (at a character boundary) with how much was left out:
+// an error line that reaches a record, a report or a terminal (an external method may print a
+// 20 MB line; issue #67).
+std::string excerpt(std::string_view text, std::size_t max_bytes = 500);
+
 // A name that may name a folder and appear in every report format (LaTeX, markdown, CSV, HTML)
 // as it is: non-empty, not "." or "..", only letters, digits, '.', '_' and '-' (a grid's name, a
 // scenario's name).

@@ -14,6 +14,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/json_input.hpp"
+#include "core/printable.hpp"
 #include "envs/env.hpp"
 #include "envs/scenario_descriptor.hpp"
 #include "experiments/run/record.hpp"
@@ -120,7 +121,7 @@ std::optional<std::string> record_problem(const JobSpec& spec, const std::string
            "another job's record)";
   if (record.value("status", "") != "ok")
     return "it recorded status '" + record.value("status", "?") + "'" +
-           (record.contains("error") && record["error"].is_string() ? ": " + record["error"].get<std::string>() : "");
+           (record.contains("error") && record["error"].is_string() ? ": " + excerpt(record["error"].get<std::string>()) : "");
   return std::nullopt;
 }
 
@@ -174,7 +175,7 @@ int run_external_job(const JobSpec& spec, const ExternalMethod& method, const st
   argv.insert(argv.end(), {"--job", job_path});
   const CommandResult r = run_command(argv);
   const std::string who = "rapid run: " + spec.algo + "'s command";
-  const std::string said = r.last_stderr_line.empty() ? "" : ": " + r.last_stderr_line;
+  const std::string said = r.last_stderr_line.empty() ? "" : ": " + excerpt(r.last_stderr_line);
   if (r.signal != 0) {
     std::cerr << who << " was killed by signal " << r.signal << said << "\n";
     return 1;

@@ -2,6 +2,7 @@
 
 #include <fstream>
 
+#include "core/printable.hpp"
 #include "core/signal_name.hpp"
 #include "experiments/run/provenance.hpp"
 #include "experiments/sweep/cell_record.hpp"
@@ -54,7 +55,7 @@ AttemptVerdict judge_attempt(const SweepFolder& folder, const SweepJob& job, con
     const auto record = read_json_file(folder.path(job_marker_path(job)));
     if (record && !record_problem(*record, job) && (*record)["config_hash"] == expected_hash) {
       const std::string error = record->contains("error") && (*record)["error"].is_string()
-                                    ? (*record)["error"].get<std::string>()
+                                    ? excerpt((*record)["error"].get<std::string>())
                                     : last_log_line(folder, job);
       // Training is deterministic: a diverged run diverges again, so it is not retried.
       if (record->value("status", "") == "diverged") return {"diverged", false, error};

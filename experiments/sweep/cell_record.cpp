@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/printable.hpp"
 #include "experiments/run/record.hpp"
 
 namespace rapid {
@@ -60,7 +61,7 @@ CellRecord read_cell_record(const SweepFolder& folder, const SweepJob& cell) {
   }
   out.record = parsed;
   out.status = text_field(*parsed, "status");
-  out.error = text_field(*parsed, "error");
+  out.error = excerpt(text_field(*parsed, "error"));
   try {
     if ((*parsed)["config_hash"].get<std::string>() != expected_cell_hash(folder, cell)) {
       out.status = "stale";

@@ -4,6 +4,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/hash.hpp"
+#include "core/printable.hpp"
 #include "experiments/run/dataset_build.hpp"
 #include "experiments/run/job.hpp"
 #include "core/json_input.hpp"
@@ -83,7 +84,7 @@ std::optional<Outcome> read_outcome(const SweepFolder& folder, const SweepJob& j
   o.attempts = j->value("attempts", 0);
   o.exit_code = j->value("exit_code", -1);
   o.signal = j->value("signal", 0);
-  o.error = j->value("error", "");
+  o.error = excerpt(j->value("error", ""));
   o.inputs_hash = j->value("inputs_hash", "");
   o.marker_hash = j->value("marker_hash", "");
   return o;
@@ -136,11 +137,22 @@ void mark_dataset_stage_done(const SweepFolder& folder, const SweepJob& job, int
 }
 
 std::string last_log_line(const SweepFolder& folder, const SweepJob& job) {
-  std::ifstream in(folder.path(job.dir + "/" + sweep_files::kLog));
-  std::string line, last;
-  while (std::getline(in, line))
-    if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
-  return last;
+  // Only the log's last 64 KiB are read: a job's log may be large, and its last line too (an
+  // external method's); a line longer than that is shown from where the tail starts, cut short.
+  constexpr std::streamoff kTail = 64 * 1024;
+  std::ifstream in(folder.path(job.dir + "/" + sweep_files::kLog), std::ios::binary | std::ios::ate);
+  if (!in) return "";
+  const std::streamoff size = in.tellg();
+  const std::streamoff from = size > kTail ? size - kTail : 0;
+  in.seekg(from);
+  std::string tail(static_cast<std::size_t>(size - from), '\0');
+  in.read(tail.data(), static_cast<std::streamsize>(tail.size()));
+  tail.resize(static_cast<std::size_t>(in.gcount()));
+  std::size_t end = tail.find_last_not_of(" \t\r\n");
+  if (end == std::string::npos) return "";
+  const std::size_t start = tail.rfind('\n', end);
+  const std::string line = tail.substr(start == std::string::npos ? 0 : start + 1, end + 1 - (start == std::string::npos ? 0 : start + 1));
+  return excerpt(line);
 }
 
 }  // namespace rapid

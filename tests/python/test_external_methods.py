@@ -112,6 +112,21 @@ class ExternalMethodInAGrid(unittest.TestCase):
         self.assertEqual(again.returncode, 1)
         self.assertIn("1 jobs run", again.stdout + again.stderr)
 
+    def test_a_huge_stderr_line_is_shown_cut_short(self):
+        # Issue #67: a 20 MB line on the method's stderr was copied whole into outcome.json, the
+        # sweep's output and every `rapid status`. Its log keeps it; the one-line reports do not.
+        path = self.write_grid(grid(self.constant(shout=5_000_000), ["constant"], seeds=[0]))
+        out = os.path.join(self.dir, "out")
+        run = self.rapid("sweep", path, "--out", out, "--no-summary")
+        self.assertEqual(run.returncode, 1)
+        self.assertLess(len(run.stdout), 5000, run.stdout[:300])
+        outcome = read_json(os.path.join(out, "jobs", "pendulum", "initial", "constant", "seed0", "outcome.json"))
+        self.assertLess(len(outcome["error"]), 1000)
+        self.assertRegex(outcome["error"], r"exited with code 3: x+ … \(\d+ bytes more\)")
+        status = self.rapid("status", out)
+        self.assertLess(len(status.stdout), 5000, status.stdout[:300])
+        self.assertIn("bytes more)", status.stdout)
+
     def test_a_command_that_writes_no_record_fails(self):
         path = self.write_grid(grid(self.constant(no_record=True), ["constant"], seeds=[0]))
         out = os.path.join(self.dir, "out")
