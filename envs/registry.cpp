@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <iostream>
+#include <sstream>
 #include <stdexcept>
 
 #include "core/contains.hpp"
@@ -60,12 +62,44 @@ std::unique_ptr<Env> make_env(const std::string& name, const ScenarioSettings& s
   throw std::invalid_argument("scenario 'pendulum' takes no driving settings");
 }
 
+namespace {
+
+// SUMO's own account of why it stopped, from what it printed: its first "Error: " line and the
+// indented lines that go with it ("In file …", "At line/column …"), joined into one line; "" if
+// it printed none (libsumo's exception then says only "Process Error").
+std::string sumo_error(std::FILE* printed) {
+  std::string text(64 * 1024, '\0');
+  std::rewind(printed);
+  text.resize(std::fread(text.data(), 1, text.size(), printed));
+  std::istringstream lines(text);
+  std::string line, error;
+  bool in_error = false;
+  while (std::getline(lines, line)) {
+    if (!in_error && line.rfind("Error: ", 0) == 0) {
+      error = line.substr(7);
+      in_error = true;
+    } else if (in_error && !line.empty() && line[0] == ' ' && line.find_first_not_of(' ') != std::string::npos) {
+      error += "; " + line.substr(line.find_first_not_of(' '));
+    } else if (in_error) {
+      break;
+    }
+  }
+  return error;
+}
+
+}  // namespace
+
 void check_scenario_runs(const std::string& name, const ScenarioSettings& settings) {
   if (!is_driving_scenario(name) || is_builtin_scenario(name)) return;
-  // SUMO prints its errors itself before libsumo throws them: keep stderr for our one line.
+  // SUMO prints its errors itself before libsumo throws them: they go to an anonymous file, read
+  // for the one line below, and stderr stays ours.
   std::fflush(stderr);
+  std::cerr.flush();
   const int saved = ::dup(STDERR_FILENO);
-  if (const int null = ::open("/dev/null", O_WRONLY); null >= 0) {
+  std::FILE* printed = std::tmpfile();
+  if (printed != nullptr) {
+    ::dup2(::fileno(printed), STDERR_FILENO);
+  } else if (const int null = ::open("/dev/null", O_WRONLY); null >= 0) {
     ::dup2(null, STDERR_FILENO);
     ::close(null);
   }
@@ -80,13 +114,16 @@ void check_scenario_runs(const std::string& name, const ScenarioSettings& settin
     problem = e.what();
   }
   std::fflush(stderr);
+  std::cerr.flush();
   if (saved >= 0) {
     ::dup2(saved, STDERR_FILENO);
     ::close(saved);
   }
+  const std::string sumo_said = printed != nullptr && !problem.empty() ? sumo_error(printed) : "";
+  if (printed != nullptr) std::fclose(printed);
   if (problem.empty()) return;
-  problem = problem.substr(0, problem.find('\n'));
-  if (problem.size() > 300) problem = problem.substr(0, 300) + "…";
+  if (!sumo_said.empty()) problem = sumo_said;
+  problem = excerpt(problem.substr(0, problem.find('\n')), 300);
   throw std::invalid_argument("scenario file " + scenario_descriptor(name)->file + " does not run in SUMO: " + problem);
 }
 

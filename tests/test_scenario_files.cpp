@@ -251,10 +251,10 @@ TEST_F(ScenarioFile, AWrongDescriptorIsRefusedNamingTheFieldBeforeAnythingIsWrit
                R"(<lane id="road_1" index="1" speed="30" length="500" shape="0,3 500,3"/></edge></net>)");
          d["networks"]["default"]["net"] = "fake.net.xml";
        },
-       "does not run in SUMO: "},
+       "does not run in SUMO: Unknown from-node 'a' for edge 'road'."},  // SUMO's own words (issue #67)
       {"the descriptor itself as an additional file",
        [](nlohmann::json& d, const fs::path& file) { d["additional_files"] = {file.filename().string()}; },
-       "does not run in SUMO: "},
+       "does not run in SUMO: invalid document structure; In file '"},  // was "…: SUMO: Process Error"
       {"a step SUMO cannot count", [](nlohmann::json& d, const fs::path&) { d["step_length"] = 1e-300; },
        "step_length: must be from 0.001 to 10"},
       // A 50 kB attribute once overflowed the stack of the attribute scan (SIGSEGV, issue 46).
