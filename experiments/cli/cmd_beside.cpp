@@ -61,8 +61,8 @@ Command add_beside_command(CLI::App& parent) {
   auto o = std::make_shared<BesideOptions>();
   CLI::App* sub = parent.add_subcommand(
       "beside", "Two reports folders of the same rows side by side: Table I, IQMs and the decided verdicts that changed");
-  sub->add_option("now", o->now, "a reports or sweep folder with summary.json (e.g. the tuned grid's)")->required();
-  sub->add_option("before", o->before, "the one to set beside it (e.g. the defaults')")->required();
+  sub->add_option("NOW", o->now, "a reports or sweep folder with summary.json (e.g. the tuned grid's)")->required();
+  sub->add_option("BEFORE", o->before, "the one to set beside it (e.g. the defaults')")->required();
   sub->add_option("--labels", o->labels, "NOW,BEFORE: the names in the headings (default: the folder names)");
   sub->add_option("--out", o->out, "write the Markdown here instead of printing it");
   return {sub, [o] { return beside_command(*o); }};

@@ -30,7 +30,7 @@ Command add_budget_command(CLI::App& parent) {
   auto dir = std::make_shared<std::string>();
   CLI::App* sub = parent.add_subcommand(
       "budget", "Apply the flow profile's budget rule to reference DDPG runs: plateau check and budget T");
-  sub->add_option("dir", *dir, "a folder with the reference runs' record.json files (a sweep folder)")->required();
+  sub->add_option("DIR", *dir, "a folder with the reference runs' record.json files (a sweep folder)")->required();
   return {sub, [dir] { return budget_command(*dir); }};
 }
 

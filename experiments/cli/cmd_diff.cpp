@@ -90,8 +90,8 @@ int diff_command(const DiffCliOptions& o) {
 Command add_diff_command(CLI::App& parent) {
   auto o = std::make_shared<DiffCliOptions>();
   CLI::App* sub = parent.add_subcommand("diff", "Compare a sweep's cells with a stored baseline (exit 1 on a difference)");
-  sub->add_option("sweep_dir", o->dir, "the sweep folder")->required();
-  sub->add_option("baseline", o->baseline, "a rapid.baseline/1 JSON file (results/baselines/<grid>.json)")->required();
+  sub->add_option("SWEEP_DIR", o->dir, "the sweep folder")->required();
+  sub->add_option("BASELINE", o->baseline, "a rapid.baseline/1 JSON file (results/baselines/<grid>.json)")->required();
   sub->add_option("--rtol", o->rtol, "relative tolerance on each cell's mean and std (default 1e-6)");
   sub->add_flag("--stat", o->stat, "pass a cell when the baseline mean lies inside the new 95% bootstrap interval");
   sub->add_flag("--write-baseline", o->write, "write BASELINE from this sweep instead of comparing (refresh on purpose)");

@@ -33,7 +33,7 @@ Command add_eval_budget_command(CLI::App& parent) {
   auto sweep = std::make_shared<std::string>();
   CLI::App* sub = parent.add_subcommand(
       "eval-budget", "The evaluation episodes that make a cell mean of given precision cheapest, from a sweep's records");
-  sub->add_option("sweep", *sweep, "a sweep folder with its records")->required();
+  sub->add_option("SWEEP_DIR", *sweep, "a sweep folder with its records")->required();
   return {sub, [sweep] { return eval_budget_command(*sweep); }};
 }
 

@@ -39,7 +39,7 @@ Command add_paper_command(CLI::App& parent) {
   auto dir = std::make_shared<std::string>();
   CLI::App* sub = parent.add_subcommand(
       "paper", "How a reports folder's order of the methods agrees with the paper's Table I, row by row (Kendall's tau)");
-  sub->add_option("reports_dir", *dir, "a reports or sweep folder with summary.json")->required();
+  sub->add_option("REPORTS_DIR", *dir, "a reports or sweep folder with summary.json")->required();
   return {sub, [dir] { return paper_command(*dir); }};
 }
 

@@ -169,7 +169,7 @@ Command add_replay_decide_command(CLI::App& parent) {
   CLI::App* sub = parent.add_subcommand(
       "replay-decide", "Replay a --decide folder's looks on its own per-seed results under both rules (freeze with "
                        "futility, and the rule before it): runs spent and verdicts, nothing run");
-  sub->add_option("folder", o->folder, "a --decide sweep folder, or its committed reports folder")->required();
+  sub->add_option("FOLDER", o->folder, "a --decide sweep folder, or its committed reports folder")->required();
   sub->add_option("--futility", o->futility, "as for rapid sweep --decide (default 0.1)")->check(futility_validator());
   sub->add_option("--run-times", o->run_times,
                   "a sweep on the folder's protocol whose records price each scenario's runs, at the folder's "

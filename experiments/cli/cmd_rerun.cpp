@@ -167,7 +167,7 @@ Command add_rerun_command(CLI::App& parent) {
   CLI::App* sub = parent.add_subcommand(
       "rerun", "Run one committed run of a results folder again in a scratch folder and set it beside the committed one "
                "(identical, or the first point that differs)");
-  sub->add_option("dir", o->dir, "a results folder (summary.json, runs.csv, grid.json), e.g. results/paper-flow")->required();
+  sub->add_option("DIR", o->dir, "a results folder (summary.json, runs.csv, grid.json), e.g. results/paper-flow")->required();
   sub->add_option("--cell", o->cell, "SCENARIO/DATASET/ALGO, DATASET none for ddpg (e.g. cut-in/medium/rapid-rl)")->required();
   sub->add_option("--seed", o->seed, "the run's seed")->required()->check(seed_validator());
   sub->add_option("--out", o->out, "the scratch folder (default: a new folder under the temporary directory)")

@@ -68,7 +68,7 @@ Command add_simulate_decide_command(CLI::App& parent) {
   CLI::App* sub = parent.add_subcommand(
       "simulate-decide", "Simulate --decide against fixed designs from a folder's own per-seed results (runs, verdicts, "
                          "decisions lost to futility)");
-  sub->add_option("folder", o->folder, "a sweep folder with its records, or its committed reports folder")->required();
+  sub->add_option("FOLDER", o->folder, "a sweep folder with its records, or its committed reports folder")->required();
   const CLI::Option* out =
       sub->add_option("--out", o->out, "also write the report to this file (default: print it only)");
   sub->add_option("--experiments", o->experiments, "simulated experiments (default 2000)")->check(CLI::Range(1, 1000000));

@@ -53,7 +53,7 @@ int status_command(const StatusOptions& o) {
 Command add_status_command(CLI::App& parent) {
   auto o = std::make_shared<StatusOptions>();
   CLI::App* sub = parent.add_subcommand("status", "Count a sweep folder's jobs by state and list the failed ones");
-  sub->add_option("sweep_dir", o->dir, "the sweep folder (results/<grid name>)")->required();
+  sub->add_option("SWEEP_DIR", o->dir, "the sweep folder (results/<grid name>)")->required();
   sub->add_flag("--json", o->json, "print one JSON object instead of the table");
   return {sub, [o] { return status_command(*o); }};
 }

@@ -88,7 +88,7 @@ Command add_summarize_command(CLI::App& parent) {
   auto o = std::make_shared<SummarizeOptions>();
   CLI::App* sub = parent.add_subcommand(
       "summarize", "Write Table I (md, tex, csv), summary.json, claims.md and Figures 2-3 from a sweep folder");
-  sub->add_option("sweep_dir", o->dir, "the sweep folder (results/<grid name>)")->required();
+  sub->add_option("SWEEP_DIR", o->dir, "the sweep folder (results/<grid name>)")->required();
   CLI::Option* out = sub->add_option("--out", o->out, "write the reports here instead of into the sweep folder");
   sub->add_flag("--no-plots", o->no_plots, "skip scripts/plot (figures and animations)");
   sub->add_flag("--no-animations", o->no_animations, "skip the best and worst cells' animations (docs/traces.md)");

@@ -391,7 +391,7 @@ int sweep_selection(const Grid& grid, const std::string& out, const Selection& s
 Command add_sweep_command(CLI::App& parent) {
   auto o = std::make_shared<SweepOptions>();
   CLI::App* sub = parent.add_subcommand("sweep", "Run a grid's jobs (reference agents, datasets, cells), resuming what is done");
-  sub->add_option("grid", o->grid, "grid file (experiments/grids/*.json)")->required();
+  sub->add_option("GRID", o->grid, "grid file (experiments/grids/*.json)")->required();
   sub->add_option("--jobs,-j", o->jobs, "worker processes (default: the grid's \"jobs\", else the number of cores)")
       ->check(CLI::Range(1, 1024));
   const CLI::Option* only = sub->add_option("--only", o->only, "run a subset: scenario=..,dataset=..,algo=..,seed=.. (repeat a key or use | for alternatives)");

@@ -211,7 +211,7 @@ Command add_tune_command(CLI::App& parent) {
   auto o = std::make_shared<TuneOptions>();
   CLI::App* sub = parent.add_subcommand(
       "tune", "Tune every algorithm of a grid alike: successive halving over a committed search space on tuning seeds (docs/tuning.md)");
-  sub->add_option("grid", o->grid, "the grid whose (scenario, algorithm) pairs to tune (its seeds are the test seeds)")->required();
+  sub->add_option("GRID", o->grid, "the grid whose (scenario, algorithm) pairs to tune (its seeds are the test seeds)")->required();
   sub->add_option("--space", o->space, "search space file (experiments/tuning/*.json)")->required();
   sub->add_option("--out", o->out, "tuning folder (default: results/<grid name>-tune)")
       ->check(non_empty_path_validator());

@@ -121,6 +121,26 @@ TEST_F(ReportCliTest, BadInputExitsTwoWithOneLine) {
   EXPECT_EQ(rapid_cli("diff --help").exit_code, 0);
 }
 
+// Issue #67: a positional argument has one name, the one its help shows and its errors say
+// ("sweep_dir" in the help, "SWEEP_DIR" in the errors before).
+TEST(PositionalArguments, AreNamedInTheHelpAsTheirErrorsNameThem) {
+  const std::map<std::string, std::string> first = {
+      {"status", "SWEEP_DIR"}, {"summarize", "SWEEP_DIR"},  {"diff", "SWEEP_DIR"},        {"eval-budget", "SWEEP_DIR"},
+      {"paper", "REPORTS_DIR"}, {"beside", "NOW"},          {"replay-decide", "FOLDER"},   {"simulate-decide", "FOLDER"},
+      {"rerun", "DIR"},         {"budget", "DIR"},          {"sweep", "GRID"},             {"tune", "GRID"},
+      {"recheck", "SWEEP_DIR"}};
+  for (const auto& [command, name] : first) {
+    const test::CliOutput none = rapid_cli(command, true);
+    EXPECT_EQ(none.exit_code, 2) << command << ": " << none.text;
+    EXPECT_NE(none.text.find(name + " is required"), std::string::npos) << command << ": " << none.text;
+    const std::string help = rapid_cli(command + " --help").text;
+    EXPECT_NE(help.find(name), std::string::npos) << command << ": " << help;
+  }
+  const test::CliOutput nowhere = rapid_cli("eval-budget /nonexistent-folder", true);
+  EXPECT_EQ(nowhere.exit_code, 2) << nowhere.text;
+  EXPECT_NE(nowhere.text.find("SWEEP_DIR: "), std::string::npos) << nowhere.text;
+}
+
 // simulate-decide and replay-decide read a folder and print what they find; they write a file only
 // where --out says (issue #67: the committed decide-simulation.md was overwritten by a run that
 // found 0 cells, with "-nan %" shares). Nothing to simulate is bad input; so is a NaN futility.
