@@ -70,7 +70,13 @@ int diff_command(const DiffCliOptions& o) {
     return kExitOk;
   }
 
-  const DiffResult result = diff_against_baseline(summary, read_baseline(o.baseline), {o.rtol, 1e-9, o.stat});
+  const nlohmann::json baseline = read_baseline(o.baseline);
+  // Another grid's baseline would only list every cell as missing on both sides (issue #67).
+  if (baseline.is_object() && baseline.contains("grid") && baseline["grid"].is_string() &&
+      baseline["grid"].get<std::string>() != summary.grid.name)
+    throw UsageError("BASELINE: '" + o.baseline + "' is grid " + baseline["grid"].get<std::string>() + "'s baseline; " +
+                     o.dir + " is a sweep of grid " + summary.grid.name);
+  const DiffResult result = diff_against_baseline(summary, baseline, {o.rtol, 1e-9, o.stat});
   if (!result.schema_error.empty()) {
     std::cout << "schema mismatch: " << result.schema_error << "\n";
     return kExitFailed;

@@ -3,6 +3,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 
 #include <sys/wait.h>
@@ -119,6 +120,15 @@ TEST_F(ReportCliTest, BadInputExitsTwoWithOneLine) {
   EXPECT_NE(out.text.find("--rtol"), std::string::npos) << out.text;
   EXPECT_EQ(rapid_cli("summarize --help").exit_code, 0);
   EXPECT_EQ(rapid_cli("diff --help").exit_code, 0);
+
+  // Issue #67: another grid's baseline is the wrong input, not a list of missing cells.
+  nlohmann::json other = report_test::read_json(baseline);
+  other["grid"] = "paper-flow";
+  std::ofstream(baseline) << other.dump(1);
+  out = diff();
+  EXPECT_EQ(out.exit_code, 2) << out.text;
+  EXPECT_NE(out.text.find("is grid paper-flow's baseline; "), std::string::npos) << out.text;
+  EXPECT_EQ(std::count(out.text.begin(), out.text.end(), '\n'), 1) << out.text;
 }
 
 // Issue #67: a positional argument has one name, the one its help shows and its errors say
