@@ -290,6 +290,24 @@ TEST(RapidRun, PrintConfigNamesWhereEachKeyCameFrom) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("job")));
 }
 
+// Issue #67: --print-config runs nothing, so it needs no --out, no --seed and no dataset; a run
+// still needs all three, with CLI11's words.
+TEST(RapidRun, PrintConfigNeedsNothingARunNeeds) {
+  const auto shown = rapid_cli("run --scenario merge --algo rapid-rl --print-config", /*with_stderr=*/true);
+  EXPECT_EQ(shown.exit_code, 0) << shown.text;
+  EXPECT_NE(shown.text.find("\nepsilon "), std::string::npos) << shown.text;
+  const std::pair<std::string, std::string> runs[] = {
+      {"run --scenario merge --algo ddpg --seed 1", "rapid: error: --out is required\n"},
+      {"run --scenario merge --algo ddpg --out /nonexistent/job", "rapid: error: --seed is required\n"},
+      {"run --scenario merge --algo rapid-rl --seed 0 --out /nonexistent/job",
+       "rapid: error: --dataset: algorithm 'rapid-rl' needs a prior dataset"}};
+  for (const auto& [command, message] : runs) {
+    const auto r = rapid_cli(command, /*with_stderr=*/true);
+    EXPECT_EQ(r.exit_code, 2) << command << "\n" << r.text;
+    EXPECT_EQ(r.text.rfind(message, 0), 0u) << command << "\n" << r.text;
+  }
+}
+
 // --out must be a folder rapid can write: otherwise exit 2 naming the option, before any work.
 TEST(RapidRun, AnUnusableOutFolderIsBadInput) {
   rapid::testing::ScratchDir dir;

@@ -28,6 +28,7 @@ struct RunOptions {
   std::string scenario, algo, dataset, dataset_dir = "datasets", grid, out, profile;
   std::uint64_t seed = 0;
   bool force = false, print_config = false;
+  bool seed_given = false, out_given = false;  // required only for a run: --print-config runs nothing
   std::vector<std::string> sets;
   std::vector<long> checkpoint_at;
 };
@@ -70,11 +71,16 @@ std::string run_profile(const RunOptions& o, const std::optional<Grid>& grid) {
 }
 
 int run_command(const RunOptions& o) {
+  // CLI11's words for a missing option, here since --print-config needs neither.
+  if (!o.print_config && !o.seed_given) throw UsageError("--seed is required");
+  if (!o.print_config && !o.out_given) throw UsageError("--out is required");
   JobSpec spec;
   const std::optional<Grid> grid = load_cli_grid(o.grid);
   check_option("--scenario", [&] { make_env(o.scenario); });
   check_option("--algo", [&] { find_algorithm(o.algo); });
-  check_option("--dataset", [&] { check_dataset_fits(o.algo, !o.dataset.empty()); });
+  // The config does not depend on the dataset: --print-config shows it without one.
+  if (!o.print_config || !o.dataset.empty())
+    check_option("--dataset", [&] { check_dataset_fits(o.algo, !o.dataset.empty()); });
   spec.scenario = o.scenario;
   spec.algo = o.algo;
   spec.seed = o.seed;
@@ -121,19 +127,24 @@ Command add_run_command(CLI::App& parent) {
   datasets.push_back("a D4RL-layout HDF5 path");
   sub->add_option("--dataset", o->dataset, names_or(datasets));
   sub->add_option("--dataset-dir", o->dataset_dir, "where named datasets live (DIR/<scenario>/<name>.h5)");
-  sub->add_option("--seed", o->seed, "run seed (network init, exploration, sampling, traffic)")
-      ->required()
-      ->check(seed_validator());
+  CLI::Option* seed = sub->add_option("--seed", o->seed, "run seed (network init, exploration, sampling, traffic); required "
+                                                         "unless --print-config")
+                           ->check(seed_validator());
   sub->add_option("--grid", o->grid, "grid file whose profile and config overrides apply");
   sub->add_option("--profile", o->profile, "config profile: short (default) or flow (docs/scenarios.md)");
   sub->add_option("--set", o->sets, "override a config key: --set key=value (repeatable)");
-  sub->add_option("--out", o->out, "job folder for record.json, actor.ckpt and progress.json")->required();
+  CLI::Option* out = sub->add_option("--out", o->out, "job folder for record.json, actor.ckpt and progress.json; required "
+                                                       "unless --print-config");
   sub->add_flag("--force", o->force, "write into an --out folder that holds files but no run record");
   sub->add_flag("--print-config", o->print_config,
                 "print the config this run would use, one key a line with its value and where it came from (the "
                 "profile's file, the grid, --set, the algorithm's recipe), and run nothing");
   sub->add_option("--checkpoint-at", o->checkpoint_at, "also save the actor after these steps")->group("");
-  return {sub, [o] { return run_command(*o); }};
+  return {sub, [o, seed, out] {
+            o->seed_given = seed->count() > 0;
+            o->out_given = out->count() > 0;
+            return run_command(*o);
+          }};
 }
 
 }  // namespace rapid
