@@ -113,6 +113,8 @@ void read_animations(const fs::path& dir, ReportFolder& folder) {
 
 ReportFolder read_report_folder(const fs::path& report_dir, const fs::path& sweep_dir) {
   ReportFolder folder;
+  folder.name = fs::absolute(report_dir).lexically_normal().filename().string();
+  if (folder.name.empty()) folder.name = fs::absolute(report_dir).lexically_normal().parent_path().filename().string();  // "dir/"
   folder.summary = read_json_or_throw(report_dir / "summary.json", "summary.json (run rapid summarize first)");
   if (!folder.summary.is_object() || folder.summary.value("schema", "") != kSummarySchema)
     throw std::invalid_argument((report_dir / "summary.json").string() + ": not a " + kSummarySchema + " document");

@@ -33,6 +33,7 @@ struct Figure {
 };
 
 struct ReportFolder {
+  std::string name;                        // the reports folder's own name (results/paper-flow-decided: paper-flow-decided)
   nlohmann::json summary;                  // summary.json ("rapid.summary/1")
   SweepFolder sweep;                       // grid.json and the job graph it expands to
   nlohmann::json grid_document;            // grid.json as written (description, profile, budgets)

@@ -88,7 +88,14 @@ std::string grid_facts(const ReportFolder& folder) {
   const nlohmann::json counts = folder.summary.value("status_counts", nlohmann::json::object());
   for (const auto& [status, n] : counts.items())
     statuses += (statuses.empty() ? "" : ", ") + html_value(n) + " " + html_escape(status);
-  html += fact("Runs", statuses + " in " + std::to_string(folder.summary["cells"].size()) + " cells");
+  std::string runs = statuses + " in " + std::to_string(folder.summary["cells"].size()) + " cells";
+  if (counts.value("missing", 0) > 0)  // a grid seed without a record: say why one may be missing
+    runs += folder.summary.contains("adaptive_seeds")
+                ? ". Missing: seeds of the grid this adaptive sweep did not run, since no comparison of their cell "
+                  "needed them (<code>--decide</code> adds a cell's seeds only while a comparison needs them; "
+                  "docs/decisions.md)"
+                : ". Missing: seeds of the grid with no record yet (not run, or their folder was lost)";
+  html += fact("Runs", runs);
   return html;
 }
 
@@ -102,7 +109,9 @@ std::string record_facts(const ReportFolder& folder) {
   const nlohmann::json& p = folder.summary["provenance"];
   std::string revision = counted(p.value("code_revisions", nlohmann::json::object()));
   if (p.value("dirty_runs", 0) > 0)
-    revision += ", " + std::to_string(p.value("dirty_runs", 0)) + " of them built with uncommitted changes";
+    revision += ", " + std::to_string(p.value("dirty_runs", 0)) +
+                " of them built with uncommitted changes (the working tree differed from the revision named when "
+                "the binary was built, so the revision alone may not rebuild them)";
   std::string html = fact("Code revision", revision);
   html += fact("Machine", counted(p.value("hosts", nlohmann::json::object())));
   html += fact("Compiler", counted(p.value("compilers", nlohmann::json::object())));
@@ -140,11 +149,15 @@ std::string provenance_section(const ReportFolder& folder) {
 
 std::string report_page_html(const ReportFolder& folder) {
   using namespace report_page;
-  const std::string name = folder.summary["grid"].value("name", "");
+  // The page is named after its folder: a grid's reports may live in several (paper-flow and
+  // paper-flow-decided are both grid paper-flow's), and the grid is named beside it when it differs.
+  const std::string grid = folder.summary["grid"].value("name", "");
+  const std::string name = folder.name.empty() ? grid : folder.name;
+  const std::string of_grid = grid == name ? "" : " (grid <code>" + html_escape(grid) + "</code>)";
   std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-                     "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>RAPID-RL sweep " +
+                     "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>RAPID-RL reports " +
                      html_escape(name) + "</title>\n<style>\n" + report_page_css() + "</style>\n</head>\n<body>\n";
-  html += "<header><h1>Sweep <code>" + html_escape(name) + "</code></h1>\n<nav><a href=\"#answer\">The answer</a> <a href=\"#provenance\">Provenance</a> "
+  html += "<header><h1>Reports <code>" + html_escape(name) + "</code>" + of_grid + "</h1>\n<nav><a href=\"#answer\">The answer</a> <a href=\"#provenance\">Provenance</a> "
           "<a href=\"#table-i\">Table I</a> <a href=\"#poi\">P(improvement)</a> <a href=\"#claims\">Claims</a> "
           "<a href=\"#figures\">Figures</a> <a href=\"#cells\">Cells and seeds</a></nav></header>\n<main>\n";
   html += "<pre id=\"selftest\" hidden></pre>\n";

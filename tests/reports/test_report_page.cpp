@@ -132,10 +132,11 @@ TEST(CommittedReportPages, RegenerateByteForByteFromTheCommittedFiles) {
   for (const std::string& folder : folders) {
     const fs::path committed = results / folder;
     // Each into a folder of its own: a report folder may hold an older one (extension-flow/handicapped),
-    // which a nested copy would meet twice.
+    // which a nested copy would meet twice. The copy keeps the folder's name, which titles its page.
     std::string flat = folder;
     std::replace(flat.begin(), flat.end(), '/', '_');
-    const fs::path copy = scratch.path() / flat;
+    const fs::path copy = scratch.path() / flat / committed.filename();
+    fs::create_directories(copy.parent_path());
     fs::copy(committed, copy, fs::copy_options::recursive);
     fs::remove(copy / "report.html");
     const auto out = rapid_cli("summarize " + copy.string() + " --html-only", true);
@@ -231,6 +232,21 @@ TEST(ReportPageAnswer, TheVerdictsComeFirstWithWhatWouldDecideThem) {
   page = report_page_html(folder);
   section = page.substr(page.find("<section id=\"answer\">"));
   EXPECT_TRUE(has(section.substr(0, section.find("</section>")), "so PASS and FAIL here are not decisions"));
+}
+
+// Issue #67: the decided folder's page was titled "Sweep paper-flow" (its grid's name) and said
+// "15 missing" and "765 … built with uncommitted changes" without a word more. A page is named
+// after its folder, with the grid beside it when that differs, and both lines say what they mean.
+TEST(ReportPageTitle, NamesItsFolderAndExplainsMissingAndUncommitted) {
+  const fs::path decided = fs::path(RAPID_SOURCE_DIR) / "results" / "paper-flow-decided";
+  const std::string page = report_page_html(read_report_folder(decided, decided));
+  EXPECT_TRUE(has(page, "<title>RAPID-RL reports paper-flow-decided</title>"));
+  EXPECT_TRUE(has(page, "<h1>Reports <code>paper-flow-decided</code> (grid <code>paper-flow</code>)</h1>"));
+  EXPECT_TRUE(has(page, "15 missing, 1155 ok in 39 cells. Missing: seeds of the grid this adaptive sweep did not run"));
+  EXPECT_TRUE(has(page, "765 of them built with uncommitted changes (the working tree differed from the revision"));
+  const fs::path plain = fs::path(RAPID_SOURCE_DIR) / "results" / "paper-flow";
+  const std::string same = report_page_html(read_report_folder(plain / "", plain / ""));
+  EXPECT_TRUE(has(same, "<h1>Reports <code>paper-flow</code></h1>"));
 }
 
 // A field of the wrong type is bad input: one line naming the file, exit 2, no page.
