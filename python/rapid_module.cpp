@@ -381,6 +381,18 @@ class PyRunRecord {
 PYBIND11_MODULE(rapid_harness, m) {
   using namespace rapid;
   m.doc() = "The RAPID-RL harness's scenarios, prior datasets and evaluation protocol (docs/python.md).";
+  // Loaded by another interpreter than the one it was built for (a pyenv shim's python3, without
+  // Debian's numpy), the module said only "ImportError: initialization failed" (issue #67).
+  try {
+    py::module_::import("numpy");
+  } catch (py::error_already_set& e) {
+    const std::string here = py::str(py::module_::import("sys").attr("executable")).cast<std::string>() + " (Python " +
+                             py::module_::import("platform").attr("python_version")().cast<std::string>() + ")";
+    throw py::import_error("rapid_harness needs numpy, which " + here + " cannot import (" + e.what() +
+                           "); the module was built for " RAPID_MODULE_PYTHON " (Python " RAPID_MODULE_PYTHON_VERSION
+                           "), with Debian's python3-numpy: run it with that interpreter, e.g. PYTHONPATH=build "
+                           RAPID_MODULE_PYTHON " (docs/python.md)");
+  }
   // Box stands in for gymnasium.spaces.Box where gymnasium is not installed (Debian has no package).
   py::exec(R"py(
 import numpy as _np

@@ -5,11 +5,13 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "core/atomic_file.hpp"
@@ -61,8 +63,41 @@ void keep_last_line(std::string& pending, std::string& last) {
   if (pending.size() > 4096) pending.erase(0, pending.size() - 4096);  // a line is shown, not kept whole
 }
 
+// The folder of the rapid_harness module this binary was built with (the build folder: the module
+// and the binary are built side by side), or "" when it is not there. An external command is a
+// job in its own folder, so a relative PYTHONPATH=build would not find it (issue #67).
+std::string module_folder() {
+  std::error_code ec;
+  const fs::path binary = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) return "";
+  for (const auto& entry : fs::directory_iterator(binary.parent_path(), ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("rapid_harness", 0) == 0 && entry.path().extension() == ".so") return binary.parent_path().string();
+  }
+  return "";
+}
+
+// PYTHONPATH for the command: the module's folder first, then what the caller had.
+std::string python_path_for_command() {
+  const std::string module = module_folder();
+  const char* had = std::getenv("PYTHONPATH");
+  const std::string before = had != nullptr ? had : "";
+  if (module.empty()) return before;
+  return before.empty() ? module : module + ":" + before;
+}
+
 CommandResult run_command(std::vector<std::string> argv) {
   CommandResult result;
+  // The command's environment, built before fork (the child may only exec): this process's, with
+  // PYTHONPATH naming the module's folder first.
+  std::vector<std::string> environment;
+  for (char** e = environ; *e != nullptr; ++e)
+    if (std::string_view(*e).rfind("PYTHONPATH=", 0) != 0) environment.emplace_back(*e);
+  if (const std::string python_path = python_path_for_command(); !python_path.empty())
+    environment.push_back("PYTHONPATH=" + python_path);
+  std::vector<char*> envp;
+  for (std::string& e : environment) envp.push_back(e.data());
+  envp.push_back(nullptr);
   int pipe_fds[2];
   if (::pipe(pipe_fds) != 0) throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
   std::vector<char*> args;
@@ -78,7 +113,7 @@ CommandResult run_command(std::vector<std::string> argv) {
     ::dup2(pipe_fds[1], STDERR_FILENO);
     ::close(pipe_fds[0]);
     ::close(pipe_fds[1]);
-    ::execvp(args[0], args.data());
+    ::execvpe(args[0], args.data(), envp.data());
     const std::string message = std::string("cannot start '") + args[0] + "': " + std::strerror(errno) + "\n";
     [[maybe_unused]] const auto n = ::write(STDERR_FILENO, message.data(), message.size());
     ::_exit(127);

@@ -89,6 +89,21 @@ class ExternalMethodInAGrid(unittest.TestCase):
         self.assertEqual(rerun.returncode, 0, rerun.stderr)
         self.assertIn("2 jobs run", rerun.stdout + rerun.stderr)
 
+    def test_the_command_finds_the_module_without_pythonpath(self):
+        # Issue #67: the command runs in its job's folder, so it failed with ModuleNotFoundError
+        # unless the user set an absolute PYTHONPATH. The runner puts the module's folder (its
+        # own build folder) first on the command's PYTHONPATH, keeping what the user had after it.
+        path = self.write_grid(grid(self.constant(), ["constant"], seeds=[0]))
+        out = os.path.join(self.dir, "out")
+        env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+        run = subprocess.run([RAPID, "sweep", path, "--out", out, "--no-summary"], capture_output=True, text=True,
+                             cwd=self.dir, env=env)
+        self.assertEqual(run.returncode, 0, run.stderr + run.stdout)
+        env["PYTHONPATH"] = "relative/elsewhere"
+        run = subprocess.run([RAPID, "sweep", path, "--out", os.path.join(self.dir, "again"), "--no-summary"],
+                             capture_output=True, text=True, cwd=self.dir, env=env)
+        self.assertEqual(run.returncode, 0, run.stderr + run.stdout)
+
     def test_a_failing_command_is_a_failed_attempt_with_its_last_stderr_line(self):
         path = self.write_grid(grid(self.constant(fail=True), ["constant"], seeds=[0]))
         out = os.path.join(self.dir, "out")

@@ -134,6 +134,20 @@ class WrongInputs(unittest.TestCase):
             rh.config("nope")
 
 
+class AnotherInterpreter(unittest.TestCase):
+    def test_an_interpreter_without_numpy_is_told_which_one_the_module_wants(self):
+        # Issue #67: under pyenv's python3 (no Debian numpy) the import said only "initialization
+        # failed". An interpreter that cannot import numpy is simulated by blocking the import.
+        import subprocess
+        import sys
+        code = "import sys; sys.modules['numpy'] = None; import rapid_harness"
+        r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+        self.assertNotEqual(r.returncode, 0)
+        last = r.stderr.strip().splitlines()[-1]
+        self.assertIn("ImportError: rapid_harness needs numpy, which " + sys.executable, last)
+        self.assertIn("the module was built for /usr/bin/python3 (Python ", last)
+
+
 class DrivingEnv(unittest.TestCase):
     def test_merge_steps_in_sumo_and_reproduces_its_traffic(self):
         env = rh.Env("merge")
