@@ -28,8 +28,9 @@ class ExternalRecord {
   const JobSpec& spec() const { return spec_; }
 
   // Writes the record: `status` ok, failed or diverged, `error` empty unless not ok. The final
-  // return is the log's final evaluation where it has one, else the mean of the last `last_k`
-  // evaluations (the config's). Returns the record's path.
+  // return is defined by the config, as for a C++ run: the final evaluation when the config has
+  // final_eval_episodes (an ok run must give one), else the mean of the last `last_k` evaluations
+  // (an ok run must have one; a final evaluation given anyway is not used). Returns the record's path.
   std::string write(const std::string& status, const std::string& error);
 
  private:

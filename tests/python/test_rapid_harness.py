@@ -312,7 +312,7 @@ class RunRecords(unittest.TestCase):
 
     def write(self, d, method_config=None, script=__file__):
         zero = lambda obs: np.zeros(1, dtype=np.float32)
-        rec = rh.RunRecord(os.path.join(d, "run"), "pendulum", "zero-torch", 3, config={"steps": 200},
+        rec = rh.RunRecord(os.path.join(d, "run"), "pendulum", "zero-torch", 3, config={"steps": 200, "final_eval_episodes": 3},
                            script=script, method_config=method_config or {"lr": 3e-4})
         rec.add_eval(0, rh.evaluate(zero, "pendulum", episodes=2))
         rec.add_train_episode(0, -1200.5, 200, False)
@@ -328,7 +328,7 @@ class RunRecords(unittest.TestCase):
         self.assertEqual(record["schema"], "rapid.run/1")
         self.assertEqual((record["status"], record["error"]), ("ok", None))
         self.assertEqual(record["cell"], {"scenario": "pendulum", "dataset": None, "algo": "zero-torch", "seed": 3})
-        self.assertEqual(record["config"], rh.config("pendulum", config={"steps": 200}))
+        self.assertEqual(record["config"], rh.config("pendulum", config={"steps": 200, "final_eval_episodes": 3}))
         self.assertEqual(record["final"]["episode_returns"], final["returns"])
         self.assertAlmostEqual(record["final"]["return_mean"], final["return_mean"], places=9)
         self.assertEqual(record["updates"], 150)
@@ -338,6 +338,29 @@ class RunRecords(unittest.TestCase):
         self.assertEqual(record["method_config"], {"lr": 3e-4})
         self.assertEqual(record["provenance"]["script"]["path"], __file__)
         self.assertRegex(record["config_hash"], "^[0-9a-f]{16}$")
+
+    def test_the_final_return_is_the_configs_as_for_a_cpp_run(self):
+        # Issue #67: on the short profile (no final evaluation) the table mixed a Python method's
+        # final evaluation with the C++ runs' mean of their last evaluations. The config decides.
+        zero = lambda obs: np.zeros(1, dtype=np.float32)
+        with tempfile.TemporaryDirectory() as d:
+            rec = rh.RunRecord(os.path.join(d, "short"), "pendulum", "zero-torch", 0, config={"steps": 200, "last_k": 2},
+                               script=__file__)
+            evals = [rh.evaluate(zero, "pendulum", episodes=1 + i) for i in range(3)]
+            for i, e in enumerate(evals):
+                rec.add_eval(100 * i, e)
+            with open(rec.finish(final=rh.evaluate(zero, "pendulum", episodes=5))) as f:
+                final = json.load(f)["final"]
+            self.assertAlmostEqual(final["return_mean"], (evals[1]["return_mean"] + evals[2]["return_mean"]) / 2, places=9)
+            self.assertNotIn("episode_returns", final)  # the final evaluation given is not this config's final return
+            rec = rh.RunRecord(os.path.join(d, "flow"), "pendulum", "zero-torch", 0, config={"final_eval_episodes": 4},
+                               script=__file__)
+            rec.add_eval(0, evals[0])
+            with self.assertRaisesRegex(ValueError, r"final evaluation of 4 episodes \(final_eval_episodes\)"):
+                rec.finish()
+            rec = rh.RunRecord(os.path.join(d, "none"), "pendulum", "zero-torch", 0, script=__file__)
+            with self.assertRaisesRegex(ValueError, "has at least one \\(add_eval\\)"):
+                rec.finish(final=evals[0])
 
     def test_the_hash_covers_the_method_and_its_script(self):
         with tempfile.TemporaryDirectory() as d:
