@@ -12,6 +12,7 @@
 #include "experiments/cli/checks.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
+#include "experiments/cli/output_folder.hpp"
 #include "experiments/report/summarize.hpp"
 #include "experiments/sweep/grid.hpp"
 #include "experiments/sweep/state.hpp"
@@ -106,6 +107,11 @@ int recheck_command(const RecheckOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  // A committed results folder has no datasets or records to start from, and its default recheck
+  // folder would be a new one beside it in the checkout: the recheck goes where --out says.
+  if (o.out.empty() && is_committed_reports_folder(o.sweep))
+    throw UsageError("SWEEP_DIR: '" + o.sweep + "' is a committed results folder (reports without their records); a "
+                     "recheck would write SWEEP_DIR-recheck beside it: name a scratch folder with --out");
   fs::path sweep_path = fs::path(o.sweep).lexically_normal();
   if (sweep_path.filename().empty()) sweep_path = sweep_path.parent_path();  // "runs/x/" names runs/x
   const fs::path out = o.out.empty() ? fs::path(sweep_path.string() + "-recheck") : fs::path(o.out);
@@ -114,6 +120,11 @@ int recheck_command(const RecheckOptions& o) {
       !o.force && existing && existing->is_object() && existing->value("name", nlohmann::json()) != grid.name)
     throw UsageError("--out: '" + out.string() + "' is the sweep folder of grid " + existing->value("name", nlohmann::json()).dump() +
                      ", not this recheck's ('" + grid.name + "'); name a new folder, or add --force to write into it");
+  // The default folder of a committed recheck (results/paper-flow-recheck) holds its reports but not
+  // its records: running into it would rewrite them from the new runs alone (issue #67).
+  if (!o.force && is_committed_reports_folder(out))
+    throw UsageError("--out: '" + out.string() + "' holds reports whose records are not there (a committed results "
+                     "folder); a recheck would rewrite them: name a scratch folder with --out (or --force)");
   const int code = sweep_grid(grid, out.string(), o.sweep, o.jobs);
   if (code != kExitOk && code != kExitFailed) return code;  // interrupted: no comparison
   const std::string text = recheck_markdown(build_summary(original.dir), build_summary(out));

@@ -67,6 +67,23 @@ int summarize_sweep(const std::string& sweep_dir, const std::string& out_dir, bo
   const Summary summary = check_option("SWEEP_DIR", [&] { return build_summary(sweep_dir); });
   if (interrupted()) return kExitInterrupted;
   const fs::path out = out_dir.empty() ? fs::path(sweep_dir) : fs::path(out_dir);
+  // A committed reports folder holds no run records: summarized again it would become a table of
+  // "0 of N runs" over the committed one (issue #67). No ok record here, and a summary.json there
+  // that had some, is refused unless --force says so.
+  int ok_now = 0;
+  for (const CellSummary& c : summary.cells) ok_now += c.n_ok;
+  if (ok_now == 0 && !force) {
+    const auto before = read_json_file(out / "summary.json");
+    const int ok_before = before && before->is_object() && (*before)["status_counts"].is_object()
+                              ? (*before)["status_counts"].value("ok", 0)
+                              : 0;
+    if (ok_before > 0)
+      throw UsageError((out_dir.empty() ? "SWEEP_DIR: " : "--out: ") + (out / "summary.json").string() + " reports " +
+                       std::to_string(ok_before) + " ok runs and " + sweep_dir +
+                       " has no ok run record: summarizing would replace that report with an empty one (a committed "
+                       "reports folder keeps no records; --html-only remakes its report.html, --out writes elsewhere, "
+                       "--force replaces it)");
+  }
   if (!out_dir.empty()) refuse_foreign_folder(out, "--out", {"summary.json", "grid.json"}, "a reports or sweep folder", force);
   make_output_folder(out, out_dir.empty() ? "SWEEP_DIR" : "--out");
   if (const std::string in_the_way = report_file_in_the_way(out); !in_the_way.empty())
@@ -92,7 +109,8 @@ Command add_summarize_command(CLI::App& parent) {
   CLI::Option* out = sub->add_option("--out", o->out, "write the reports here instead of into the sweep folder");
   sub->add_flag("--no-plots", o->no_plots, "skip scripts/plot (figures and animations)");
   sub->add_flag("--no-animations", o->no_animations, "skip the best and worst cells' animations (docs/traces.md)");
-  CLI::Option* force = sub->add_flag("--force", o->force, "write into an --out folder that holds other files (overwriting table.md, …)");
+  CLI::Option* force = sub->add_flag("--force", o->force, "write into an --out folder that holds other files (overwriting table.md, …), "
+                                     "or replace a report of ok runs with one of none");
   sub->add_flag("--html-only", o->html_only,
                 "only remake report.html from the folder's summary.json, runs.csv and figures (a committed reports folder)")
       ->excludes(out)

@@ -270,8 +270,7 @@ int sweep_of(const SweepOptions& o, const Grid& grid) {
   // A selection run into a committed results folder (reports without the records behind them)
   // would rewrite its table, claims and report as a table of the selection's runs alone (issue #68).
   if (!o.only.empty() && !o.preset) {
-    std::error_code ec;
-    if (fs::exists(dir / "summary.json", ec) && !fs::is_directory(dir / "jobs", ec))
+    if (is_committed_reports_folder(dir))
       throw UsageError("--out: " + dir.string() +
                        " holds reports whose records are not there (a committed results folder); a --only run would "
                        "rewrite them as a table of its own runs: name a scratch folder with --out");

@@ -14,7 +14,7 @@ namespace fs = std::filesystem;
 
 void make_output_folder(const fs::path& dir, const std::string& option) {
   if (dir.empty()) throw UsageError(option + ": must name a folder, got an empty path");
-  const std::string quoted = "'" + dir.string() + "'";
+  const std::string quoted = std::string("'").append(dir.string()).append("'");  // (append: GCC 12's false -Wrestrict)
   std::error_code ec;
   const fs::file_status st = fs::status(dir, ec);
   if (ec && ec != std::errc::no_such_file_or_directory)
@@ -49,6 +49,11 @@ void refuse_foreign_folder(const fs::path& dir, const std::string& option, const
     if (fs::exists(dir / m.file, ec) && (!m.accepts || m.accepts((dir / m.file).string()))) return;
   throw UsageError(option + ": '" + dir.string() + "' holds files but is not " + what +
                    "; name a new or empty folder, or add --force to write into it anyway");
+}
+
+bool is_committed_reports_folder(const std::filesystem::path& dir) {
+  std::error_code ec;
+  return std::filesystem::exists(dir / "summary.json", ec) && !std::filesystem::is_directory(dir / "jobs", ec);
 }
 
 }  // namespace rapid

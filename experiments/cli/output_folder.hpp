@@ -23,6 +23,11 @@ void make_output_folder(const std::filesystem::path& dir, const std::string& opt
 // or cannot be written. Nothing is created on the user's behalf.
 void check_output_file(const std::string& option, const std::string& path);
 
+// A committed results folder: reports (summary.json) without the run records behind them (no
+// jobs/). A command that would run or summarize into it would rewrite committed files from runs it
+// does not hold (issues #67, #68).
+bool is_committed_reports_folder(const std::filesystem::path& dir);
+
 // A file whose presence says rapid wrote the folder: its name and, where a user's file could have
 // that name too, a check of its contents.
 struct FolderMarker {

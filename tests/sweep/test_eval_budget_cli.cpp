@@ -1,6 +1,7 @@
 // `rapid eval-budget SWEEP_DIR` on a real sweep's records: the components and the recommendation
-// per scenario, written beside the records; a sweep whose runs have no final evaluation to measure
-// the episodes' share from is refused with one line.
+// per scenario, printed, and written only into --out (never into the folder it reads, issue #67);
+// a sweep whose runs have no final evaluation to measure the episodes' share from is refused with
+// one line.
 #include <gtest/gtest.h>
 
 #include "tests/datasets/dataset_fixtures.hpp"
@@ -27,10 +28,15 @@ TEST(EvalBudgetCli, MeasuresASweepAndRefusesOneWithoutAFinalEvaluation) {
   write_json(grid, g);
   const fs::path with = dir.path() / "with";
   ASSERT_EQ(run_rapid("sweep " + grid.string() + " --jobs 2 --no-summary --out " + with.string()).exit_code, 0);
-  const Result r = run_rapid("eval-budget " + with.string());
+  const Result printed = run_rapid("eval-budget " + with.string());
+  ASSERT_EQ(printed.exit_code, 0) << printed.output;
+  EXPECT_NE(printed.output.find("| pendulum | 6 (2) |"), std::string::npos) << printed.output;
+  EXPECT_FALSE(fs::exists(with / "eval-budget.md")) << "written only where --out says";
+  const fs::path report = dir.path() / "report";
+  const Result r = run_rapid("eval-budget " + with.string() + " --out " + report.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("| pendulum | 6 (2) |"), std::string::npos) << r.output;
-  const nlohmann::json j = read_json(with / "eval-budget.json");
+  const nlohmann::json j = read_json(report / "eval-budget.json");
   ASSERT_EQ(j.size(), 1u);
   EXPECT_EQ(j[0]["now"]["final_episodes"], 6);
   EXPECT_EQ(j[0]["now"]["points"], 3);  // steps 0, 200 and 400
