@@ -78,7 +78,8 @@ int print_plan(const TunePlan& plan, const std::string& bench_path, const std::v
             << "scenario\talgorithm\truns\tpredicted s per run\tpredicted core-hours"
             << (so_far ? "\truns done\tspent core-hours\tspent s per run\tspent / predicted" : "") << "\n";
   int done_runs = 0;
-  double spent_h = 0, predicted_done_h = 0, left_h = 0;
+  double spent_h = 0, predicted_done_h = 0, left_h = 0, confirm_h = 0;
+  int confirm_runs = 0;
   for (const std::string& scenario : plan.grid.scenarios)
     for (const std::string& algo : plan.grid.algos) {
       const auto it = std::find_if(bench["run_costs"].begin(), bench["run_costs"].end(), [&](const nlohmann::json& c) {
@@ -90,6 +91,16 @@ int print_plan(const TunePlan& plan, const std::string& bench_path, const std::v
       const double run_s = it->value("train_s", 0.0) + it->value("eval_s_max", 0.0) * episodes(trial) / episodes(profile);
       const double hours = run_s * units * per_unit / 3600;
       total_h += hours;
+      // The confirmation, should the winner not be the defaults: both on its units of fresh seeds;
+      // sized once the search is known, else at most all of the fresh seeds.
+      const auto known = so_far ? std::find_if(so_far->begin(), so_far->end(),
+                                               [&](const TrialScores& t) { return t.scenario == scenario && t.algo == algo; })
+                                : std::vector<TrialScores>::const_iterator{};
+      const bool sized = so_far && known != so_far->end() && known->state.finished();
+      const int confirm_units = sized ? (known->confirmation.needed ? known->confirmation.units : 0)
+                                      : confirmation_max_units(plan, algo);
+      confirm_runs += 2 * confirm_units * per_unit;
+      confirm_h += run_s * 2 * confirm_units * per_unit / 3600;
       std::cout << scenario << "\t" << algo << "\t" << units * per_unit << "\t" << fixed(run_s, 1) << "\t" << fixed(hours, 2);
       if (so_far) {
         const auto found = std::find_if(so_far->begin(), so_far->end(),
@@ -106,7 +117,10 @@ int print_plan(const TunePlan& plan, const std::string& bench_path, const std::v
       }
       std::cout << "\n";
     }
-  std::cout << "in all: " << fixed(total_h, 1) << " core-hours predicted (an upper bound on evaluation: every episode to the horizon)\n";
+  std::cout << "in all: " << fixed(total_h, 1) << " core-hours predicted (an upper bound on evaluation: every episode to the horizon)\n"
+            << "confirmation: at most " << confirm_runs << " runs, " << fixed(confirm_h, 1)
+            << " core-hours more (a search whose winner is not the defaults runs both on fresh seeds; its units are sized "
+               "from its spread once it has finished, and before that priced at every fresh seed)\n";
   if (so_far)
     std::cout << "so far: " << done_runs << " of " << units * per_unit * static_cast<int>(so_far->size()) << " runs in "
               << fixed(spent_h, 1) << " core-hours (the records' wall time), which the plan puts at " << fixed(predicted_done_h, 1)
@@ -152,7 +166,7 @@ int tune_command(const TuneOptions& o) {
     const std::vector<TrialScores> searches = replay_tune(dir, plan);
     const std::vector<TrialJobs> missing = missing_trials(plan, searches, only);
     int finished = 0;
-    for (const TrialScores& t : searches) finished += t.state.finished();
+    for (const TrialScores& t : searches) finished += t.finished();
     std::cerr << "rapid tune: " << finished << " of " << searches.size() << " searches finished\n";
     if (missing.empty() && finished < static_cast<int>(searches.size())) {
       std::cout << "tune " << dir.string() << ": the searches of --algos have finished; " << searches.size() - finished
@@ -167,17 +181,19 @@ int tune_command(const TuneOptions& o) {
     }
     std::vector<TrialJobs> unsuccessful;  // trials whose sweep did not end ok: a diverged run, or a failed one
     for (const TrialJobs& trials : missing) {
-      const fs::path folder = candidate_dir(dir, trials.candidate);
-      // Candidate 0 starts from --reuse-datasets; the others copy its references and datasets once
-      // it is a sweep folder (on Slurm its first rung may not have run yet).
+      const fs::path folder = trials.confirming ? confirming_dir(dir, trials.candidate) : candidate_dir(dir, trials.candidate);
+      // Candidate 0 starts from --reuse-datasets; the others, and every confirmation folder, copy
+      // its references and datasets once it is a sweep folder (on Slurm its first rung may not
+      // have run yet).
       const fs::path first = candidate_dir(dir, 0);
-      const std::string from = trials.candidate == 0                      ? o.reuse_datasets
-                               : fs::exists(first / sweep_files::kGrid) ? first.string()
-                                                                         : "";
+      const std::string from = trials.candidate == 0 && !trials.confirming ? o.reuse_datasets
+                               : fs::exists(first / sweep_files::kGrid)     ? first.string()
+                                                                            : "";
       std::cerr << "rapid tune: candidate " << trials.candidate << ": " << trials.selection.cells.size() << " cells × "
                 << trials.selection.seeds.size() << " seeds (" << trials.selection.text << ")\n";
-      const int code = sweep_selection(plan.candidates[static_cast<std::size_t>(trials.candidate)], folder.string(),
-                                       trials.selection, from, o.jobs, o.backend);
+      const std::vector<Grid>& grids = trials.confirming ? plan.confirming : plan.candidates;
+      const int code = sweep_selection(grids[static_cast<std::size_t>(trials.candidate)], folder.string(), trials.selection,
+                                       from, o.jobs, o.backend);
       if (code == kExitInterrupted) return code;
       if (code != kExitOk) unsuccessful.push_back(trials);
     }
@@ -187,19 +203,20 @@ int tune_command(const TuneOptions& o) {
       const std::vector<TrialJobs> still = missing_trials(plan, replay_tune(dir, plan), only);
       for (const TrialJobs& trials : unsuccessful) {
         const bool retry = std::any_of(still.begin(), still.end(), [&](const TrialJobs& s) {
-          return s.candidate == trials.candidate && s.selection.cells == trials.selection.cells &&
-                 s.selection.seeds == trials.selection.seeds;
+          return s.candidate == trials.candidate && s.confirming == trials.confirming &&
+                 s.selection.cells == trials.selection.cells && s.selection.seeds == trials.selection.seeds;
         });
         if (retry) {
-          std::cerr << "rapid tune: trials of candidate " << trials.candidate << " failed (rapid status "
-                    << candidate_dir(dir, trials.candidate).string() << "); run the same command again to retry them\n";
+          const fs::path where = trials.confirming ? confirming_dir(dir, trials.candidate) : candidate_dir(dir, trials.candidate);
+          std::cerr << "rapid tune: trials of candidate " << trials.candidate << " failed (rapid status " << where.string()
+                    << "); run the same command again to retry them\n";
           return kExitFailed;
         }
       }
     }
     if (o.backend == "slurm") {
       std::cout << "tune " << dir.string() << ": this rung's trials are submitted; run the same command again when they have "
-                   "run (rapid status " << dir.string() << "/c0 …) to go on to the next rung\n";
+                   "run (rapid status " << dir.string() << "/c0 …) to go on to the next rung or the confirmation\n";
       return kExitOk;
     }
   }

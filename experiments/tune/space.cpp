@@ -25,7 +25,8 @@ constexpr std::uint64_t kFirstRecheckSeed = 100;
 constexpr int kMaxCandidates = 1000;
 constexpr std::size_t kMaxSpaceBytes = std::size_t{1} << 20;
 const std::set<std::string> kTopLevel = {"name", "description", "seeds", "candidates", "sampler_seed",
-                                         "rungs", "trial_config", "keys"};
+                                         "rungs", "trial_config", "keys", "confirmation"};
+constexpr std::uint64_t kFirstTuningSeed = 50;  // tables 0-49, tuning 50-99 (the developers' guide)
 const std::set<std::string> kKinds = {"log_uniform", "uniform", "choice"};
 
 class SpaceChecker {
@@ -174,6 +175,31 @@ SearchSpace parse_space(const json& doc, const std::string& label) {
                      "expected a schedule key (the trials' evaluation), got '" + key + "'");
       }
   }
+  if (doc.contains("confirmation")) {
+    const json& c = doc["confirmation"];
+    if (!c.is_object()) check.fail("confirmation", "expected an object with alpha, power and delta");
+    for (const auto& [key, value] : c.items()) {
+      const std::string field = "confirmation." + key;
+      if (key == "alpha" || key == "power") {
+        if (!value.is_number() || !(value.get<double>() > 0.0 && value.get<double>() < 1.0))
+          check.fail(field, "expected a number between 0 and 1, got " + json_excerpt(value));
+        (key == "alpha" ? s.confirmation.alpha : s.confirmation.power) = value.get<double>();
+      } else if (key == "delta") {
+        const auto positive = [&](const json& v, const std::string& at) {
+          if (!v.is_number() || !(v.get<double>() > 0.0) || !std::isfinite(v.get<double>()))
+            check.fail(at, "expected a positive number, got " + json_excerpt(v));
+          return v.get<double>();
+        };
+        if (value.is_object()) {
+          for (const auto& [scenario, d] : value.items()) s.confirmation.delta[scenario] = positive(d, field + "." + scenario);
+        } else {
+          s.confirmation.delta[""] = positive(value, field);
+        }
+      } else {
+        check.fail(field, "unknown key; expected alpha, power or delta");
+      }
+    }
+  }
   if (!doc["keys"].is_object() || doc["keys"].empty()) check.fail("keys", "expected an object key → range");
   for (const auto& [key, spec] : doc["keys"].items()) s.keys.push_back(parse_key(check, key, spec));
   if (s.candidates > 1 && s.keys.empty()) check.fail("keys", "candidates beyond the default need keys to vary");
@@ -191,6 +217,15 @@ SearchSpace load_space(const std::string& path) {
 }
 
 int max_units(const SearchSpace& space) { return space.rungs.back(); }
+
+std::vector<std::uint64_t> confirmation_seeds(const SearchSpace& space, const std::vector<std::uint64_t>& excluded) {
+  std::vector<std::uint64_t> fresh;
+  for (std::uint64_t seed = kFirstTuningSeed; seed < kFirstRecheckSeed; ++seed)
+    if (std::find(space.seeds.begin(), space.seeds.end(), seed) == space.seeds.end() &&
+        std::find(excluded.begin(), excluded.end(), seed) == excluded.end())
+      fresh.push_back(seed);
+  return fresh;
+}
 
 std::vector<std::uint64_t> unit_seeds(const SearchSpace& space, bool uses_prior, int datasets, int units) {
   const int per_unit = uses_prior ? 1 : datasets;

@@ -21,6 +21,10 @@
 //                   or "choice": [values…], and optionally "algos": [names]}: the range of a
 //                   config key, the same for every algorithm that reads it (algos/registry.hpp),
 //                   unless "algos" names who tunes it
+//   "confirmation"  optional object: "alpha" (the one-sided test's level, default 0.05), "power"
+//                   (default 0.8) and "delta" (a number, or {"scenario": number}: the improvement
+//                   the confirmation's units are sized to detect; default each scenario's δ from
+//                   the profile's decisions.json)
 #pragma once
 
 #include <cstdint>
@@ -39,6 +43,14 @@ struct SpaceKey {
   std::vector<std::string> algos;                            // empty: every algorithm that reads the key
 };
 
+// The confirmation stage's settings (docs/tuning.md §Why a winner must be confirmed): the one-sided
+// test's level, the power its units are sized for, and δ, the improvement worth adopting, per
+// scenario (empty: each scenario's decision margin from the profile's decisions.json).
+struct ConfirmationSettings {
+  double alpha = 0.05, power = 0.8;
+  std::map<std::string, double> delta;  // scenario → δ; "" → every scenario's
+};
+
 struct SearchSpace {
   std::string name, description;
   std::vector<std::uint64_t> seeds;
@@ -47,8 +59,13 @@ struct SearchSpace {
   std::vector<int> rungs;  // cumulative units
   nlohmann::json trial_config = nlohmann::json::object();  // {"": {...}} or scenario → {...}
   std::vector<SpaceKey> keys;  // in key order
+  ConfirmationSettings confirmation;  // "confirmation" (optional)
   nlohmann::json document;     // as read, for tuned.json
 };
+
+// The confirmation's fresh tuning seeds: 50-99 but the space's own and `excluded` (the grid's), in
+// ascending order. A unit of a prior algorithm is one of them, of ddpg as many as the datasets.
+std::vector<std::uint64_t> confirmation_seeds(const SearchSpace& space, const std::vector<std::uint64_t>& excluded);
 
 // Reads and checks a space file's shape (unknown keys, ranges, rungs, seeds). Throws
 // std::invalid_argument("space PATH: FIELD: problem").

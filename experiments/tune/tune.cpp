@@ -4,6 +4,8 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <tuple>
+#include <functional>
 #include <map>
 #include <set>
 #include <sstream>
@@ -12,6 +14,7 @@
 #include "algos/registry.hpp"
 #include "core/atomic_file.hpp"
 #include "core/statistics.hpp"
+#include "experiments/report/decisions.hpp"
 #include "experiments/report/format.hpp"
 #include "experiments/sweep/cell_record.hpp"
 #include "experiments/sweep/graph.hpp"
@@ -37,9 +40,84 @@ std::vector<std::uint64_t> seeds_of_unit(const SearchSpace& space, const Grid& g
   return {upto.end() - static_cast<long>(per_unit), upto.end()};
 }
 
+// The confirmation's unit u of `algo`: one fresh seed for a prior algorithm, as many as the
+// datasets for ddpg; and how many units the fresh seeds hold.
+std::size_t seeds_per_unit(const Grid& grid, const std::string& algo) {
+  return find_algorithm(algo).uses_prior ? 1 : grid.datasets.size();
+}
+std::vector<std::uint64_t> confirmation_unit_seeds(const TunePlan& plan, const std::string& algo, int u) {
+  const std::size_t per = seeds_per_unit(plan.grid, algo);
+  const auto first = plan.confirmation_seeds.begin() + static_cast<long>(per * static_cast<std::size_t>(u));
+  return {first, first + static_cast<long>(per)};
+}
+
+// A grid document as candidate k's sweep folder holds it, on `seeds`.
+json candidate_document(const Grid& grid, const SearchSpace& space, int k, const std::vector<std::uint64_t>& seeds,
+                        const std::string& suffix, const std::string& what) {
+  json doc = grid.normalized;
+  doc["name"] = grid.name + "-tune-c" + std::to_string(k) + suffix;
+  doc["description"] = "rapid tune: candidate " + std::to_string(k) + " of space " + space.name + " for grid " + grid.name +
+                       (k == 0 ? " (the defaults)" : "") + ", " + what + ", evaluated as the space's trial_config says";
+  doc["seeds"] = seeds;
+  json algo_config = grid.algo_config;
+  for (const std::string& scenario : grid.scenarios)
+    for (const std::string& algo : grid.algos) {
+      json overrides = algo_overrides(grid, scenario, algo);
+      overrides.update(trial_overrides(space, scenario));
+      overrides.update(candidate_overrides(space, scenario, algo, k));
+      if (!overrides.empty()) algo_config[scenario][algo] = overrides;
+    }
+  if (!algo_config.empty()) doc["algo_config"] = algo_config;
+  return doc;
+}
+
+// One search's complete units in one candidate's folder: per unit, the mean over the datasets of
+// its runs' final returns (a diverged run: −∞), in unit order until the first unit not complete.
+// With `count`, adds its finished runs and their wall time to `t`.
+std::vector<double> unit_scores_in(const SweepFolder& folder, const std::map<std::pair<std::string, std::uint64_t>, const SweepJob*>& jobs,
+                                   const Grid& grid, TrialScores& t, int units,
+                                   const std::function<std::vector<std::uint64_t>(int)>& seeds_of, bool count) {
+  std::vector<double> scores;
+  bool gap = false;
+  for (int u = 0; u < units; ++u) {
+    double sum = 0.0;
+    int done = 0, expected = 0;
+    for (const std::string& dataset : datasets_of(grid, t.algo))
+      for (std::uint64_t seed : seeds_of(u)) {
+        ++expected;
+        const auto it = jobs.find({cell_key(t.scenario, dataset, t.algo), seed});
+        if (it == jobs.end()) continue;
+        const CellRecord r = read_cell_record(folder, *it->second);
+        const bool diverged = r.status == "diverged" && r.hash_checked;
+        if (!r.done() && !diverged) continue;
+        ++done;
+        if (count) {
+          ++t.runs;
+          t.wall_s += r.record->value("timing", json::object()).value("wall_s", 0.0);
+        }
+        sum += diverged ? -std::numeric_limits<double>::infinity() : r.record->at("final").at("return_mean").get<double>();
+      }
+    if (done < expected) gap = true;
+    if (!gap) scores.push_back(sum / expected);
+  }
+  return scores;
+}
+
+std::map<std::pair<std::string, std::uint64_t>, const SweepJob*> cell_jobs(const SweepFolder& folder) {
+  std::map<std::pair<std::string, std::uint64_t>, const SweepJob*> jobs;  // (cell key, seed) → job
+  for (const SweepJob& job : folder.graph.jobs)
+    if (job.kind == JobKind::kCell) jobs[{cell_key(job.scenario, job.dataset, job.algo), job.seed}] = &job;
+  return jobs;
+}
+
 }  // namespace
 
 fs::path candidate_dir(const fs::path& dir, int k) { return dir / std::string("c").append(std::to_string(k)); }
+fs::path confirming_dir(const fs::path& dir, int k) { return candidate_dir(dir / "confirm", k); }
+
+int confirmation_max_units(const TunePlan& plan, const std::string& algo) {
+  return static_cast<int>(plan.confirmation_seeds.size() / seeds_per_unit(plan.grid, algo));
+}
 
 TunePlan plan_tune(const Grid& grid, const SearchSpace& space) {
   if (!grid.axes.empty())
@@ -56,30 +134,75 @@ TunePlan plan_tune(const Grid& grid, const SearchSpace& space) {
                  (key.algos.empty() || std::find(key.algos.begin(), key.algos.end(), a) != key.algos.end());
         }))
       throw std::invalid_argument("space " + space.name + ": keys." + key.key + ": no algorithm of grid " + grid.name + " tunes it");
-  TunePlan plan{grid, space, {}};
+  TunePlan plan{grid, space, {}, {}, confirmation_seeds(space, grid.seeds), {}};
+  const std::optional<DecisionSettings> decisions = load_decision_settings(grid.profile);
+  for (const std::string& scenario : grid.scenarios) {
+    const auto& given = space.confirmation.delta;
+    const auto own = given.find(scenario), every = given.find("");
+    if (own != given.end()) plan.delta[scenario] = own->second;
+    else if (every != given.end()) plan.delta[scenario] = every->second;
+    else if (decisions && decisions->delta.count(scenario)) plan.delta[scenario] = decisions->delta.at(scenario);
+    else
+      throw std::invalid_argument("space " + space.name + ": confirmation.delta: no δ for scenario " + scenario +
+                                  " (profile " + grid.profile + "'s decisions.json has none); give one");
+  }
+  for (const std::string& algo : grid.algos)
+    if (confirmation_max_units(plan, algo) < 3)
+      throw std::invalid_argument("space " + space.name + ": seeds: the confirmation of " + algo +
+                                  " needs at least 3 units of fresh tuning seeds (50-99 but the space's and the grid's)");
   for (int k = 0; k < space.candidates; ++k) {
-    json doc = grid.normalized;
-    doc["name"] = grid.name + "-tune-c" + std::to_string(k);
-    doc["description"] = "rapid tune: candidate " + std::to_string(k) + " of space " + space.name + " for grid " + grid.name +
-                         (k == 0 ? " (the defaults)" : "") + ", on the tuning seeds, evaluated as the space's trial_config says";
-    doc["seeds"] = space.seeds;
-    json algo_config = grid.algo_config;
-    for (const std::string& scenario : grid.scenarios)
-      for (const std::string& algo : grid.algos) {
-        json overrides = algo_overrides(grid, scenario, algo);
-        overrides.update(trial_overrides(space, scenario));
-        overrides.update(candidate_overrides(space, scenario, algo, k));
-        if (!overrides.empty()) algo_config[scenario][algo] = overrides;
-      }
-    if (!algo_config.empty()) doc["algo_config"] = algo_config;
     try {
-      plan.candidates.push_back(parse_grid(doc, "of candidate " + std::to_string(k)));
+      plan.candidates.push_back(parse_grid(candidate_document(grid, space, k, space.seeds, "", "on the tuning seeds"),
+                                           "of candidate " + std::to_string(k)));
+      plan.confirming.push_back(parse_grid(candidate_document(grid, space, k, plan.confirmation_seeds, "-confirm",
+                                                              "on the confirmation's fresh tuning seeds"),
+                                           "of candidate " + std::to_string(k)));
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("space " + space.name + ": candidate " + std::to_string(k) + ": " + e.what());
     }
   }
   return plan;
 }
+
+namespace {
+
+// Each search whose halving winner is not the defaults: the confirmation's units, sized from the
+// search's paired unit spread (all of the fresh seeds when there is none to size from), and the
+// winner's and the defaults' unit scores on them so far; the test once both are complete.
+void replay_confirmations(const fs::path& dir, const TunePlan& plan, std::vector<TrialScores>& searches) {
+  const ConfirmationSettings& c = plan.space.confirmation;
+  struct Folder {
+    SweepFolder folder;
+    std::map<std::pair<std::string, std::uint64_t>, const SweepJob*> jobs;  // into folder's graph, once stored
+  };
+  std::map<int, Folder> folders;  // read once per candidate
+  const auto folder_of = [&](int k) -> const Folder& {
+    auto it = folders.find(k);
+    if (it == folders.end()) {
+      it = folders.emplace(k, Folder{make_sweep_folder(confirming_dir(dir, k), plan.confirming[static_cast<std::size_t>(k)]), {}}).first;
+      it->second.jobs = cell_jobs(it->second.folder);
+    }
+    return it->second;
+  };
+  for (TrialScores& t : searches) {
+    if (!t.state.finished() || t.state.winner == 0) continue;
+    TrialScores::Confirmation& conf = t.confirmation;
+    conf.needed = true;
+    conf.delta = plan.delta.at(t.scenario);
+    conf.spread = paired_unit_spread(t.unit_scores);
+    const int most = confirmation_max_units(plan, t.algo);
+    conf.units = std::isfinite(conf.spread) ? confirmation_units(conf.spread, conf.delta, c.alpha, c.power, most) : most;
+    const auto seeds_of = [&](int u) { return confirmation_unit_seeds(plan, t.algo, u); };
+    const Folder& winner = folder_of(t.state.winner);
+    conf.winner = unit_scores_in(winner.folder, winner.jobs, plan.grid, t, conf.units, seeds_of, true);
+    const Folder& defaults = folder_of(0);
+    conf.defaults = unit_scores_in(defaults.folder, defaults.jobs, plan.grid, t, conf.units, seeds_of, true);
+    if (static_cast<int>(conf.winner.size()) == conf.units && static_cast<int>(conf.defaults.size()) == conf.units)
+      conf.test = confirm_winner(conf.winner, conf.defaults, c.alpha);
+  }
+}
+
+}  // namespace
 
 std::vector<TrialScores> replay_tune(const fs::path& dir, const TunePlan& plan) {
   const SearchSpace& space = plan.space;
@@ -95,10 +218,10 @@ std::vector<TrialScores> replay_tune(const fs::path& dir, const TunePlan& plan) 
     }
   for (int k = 0; k < space.candidates; ++k) {
     const SweepFolder folder = make_sweep_folder(candidate_dir(dir, k), plan.candidates[static_cast<std::size_t>(k)]);
-    std::map<std::pair<std::string, std::uint64_t>, const SweepJob*> jobs;  // (cell key, seed) → job
-    for (const SweepJob& job : folder.graph.jobs)
-      if (job.kind == JobKind::kCell) jobs[{cell_key(job.scenario, job.dataset, job.algo), job.seed}] = &job;
+    const auto jobs = cell_jobs(folder);
     for (TrialScores& t : searches) {
+      t.unit_scores.push_back(unit_scores_in(folder, jobs, plan.grid, t, most,
+                                             [&](int u) { return seeds_of_unit(space, plan.grid, t.algo, u); }, false));
       t.overrides.push_back(candidate_overrides(space, t.scenario, t.algo, k));
       const std::vector<std::string> datasets = datasets_of(plan.grid, t.algo);
       std::vector<std::vector<double>> returns(datasets.size());  // per dataset, in unit order, until the first gap
@@ -130,28 +253,41 @@ std::vector<TrialScores> replay_tune(const fs::path& dir, const TunePlan& plan) 
   }
   for (TrialScores& t : searches)
     t.state = replay_halving(space, [&](int k, int units) { return t.scores_by_units[static_cast<std::size_t>(k)][static_cast<std::size_t>(units)]; });
+  replay_confirmations(dir, plan, searches);
   return searches;
 }
 
 std::vector<TrialJobs> missing_trials(const TunePlan& plan, const std::vector<TrialScores>& searches,
                                       const std::set<std::string>& algos) {
-  std::map<std::pair<int, std::vector<std::uint64_t>>, Selection> groups;
+  std::map<std::tuple<bool, int, std::vector<std::uint64_t>>, Selection> groups;
   for (const TrialScores& t : searches) {
-    if (t.state.finished() || (!algos.empty() && !algos.count(t.algo))) continue;
+    if (t.finished() || (!algos.empty() && !algos.count(t.algo))) continue;
+    if (t.state.finished()) {  // the confirmation: the winner and the defaults on the fresh seeds
+      std::vector<std::uint64_t> seeds;
+      for (int u = 0; u < t.confirmation.units; ++u)
+        for (std::uint64_t s : confirmation_unit_seeds(plan, t.algo, u)) seeds.push_back(s);
+      for (int k : {t.state.winner, 0}) {
+        Selection& s = groups[{true, k, seeds}];
+        s.seeds.insert(seeds.begin(), seeds.end());
+        for (const std::string& d : datasets_of(plan.grid, t.algo)) s.cells.insert(cell_key(t.scenario, d, t.algo));
+        s.text = "rapid tune: confirmation (" + std::to_string(t.confirmation.units) + " units on fresh seeds)";
+      }
+      continue;
+    }
     const int units = plan.space.rungs[t.state.rung];
     const std::vector<std::uint64_t> seeds =
         unit_seeds(plan.space, find_algorithm(t.algo).uses_prior, static_cast<int>(plan.grid.datasets.size()), units);
     for (int k : t.state.alive) {
       if (t.scores_by_units[static_cast<std::size_t>(k)][static_cast<std::size_t>(units)]) continue;
-      Selection& s = groups[{k, seeds}];
+      Selection& s = groups[{false, k, seeds}];
       s.seeds.insert(seeds.begin(), seeds.end());
       for (const std::string& d : datasets_of(plan.grid, t.algo)) s.cells.insert(cell_key(t.scenario, d, t.algo));
       s.text = "rapid tune: rung " + std::to_string(t.state.rung + 1) + " (" + std::to_string(units) + " units)";
     }
   }
   std::vector<TrialJobs> out;
-  for (auto& [key, selection] : groups) out.push_back({key.first, selection});
-  return out;  // ordered by candidate: c0, whose datasets the others copy, first
+  for (auto& [key, selection] : groups) out.push_back({std::get<1>(key), std::get<0>(key), selection});
+  return out;  // the search's trials first, each ordered by candidate: c0, whose datasets the others copy, first
 }
 
 json tune_identity(const TunePlan& plan) {
@@ -170,7 +306,7 @@ json tuned_grid(const TunePlan& plan, const std::vector<TrialScores>& searches) 
                        plan.space.name + " in algo_config, on the grid's own (test) seeds. " + plan.grid.description;
   json algo_config = plan.grid.algo_config;
   for (const TrialScores& t : searches) {
-    const json& winner = t.overrides[static_cast<std::size_t>(t.state.winner)];
+    const json& winner = t.overrides[static_cast<std::size_t>(t.adopted())];
     if (winner.empty()) continue;
     json overrides = algo_overrides(plan.grid, t.scenario, t.algo);
     overrides.update(winner);
@@ -186,6 +322,26 @@ namespace {
 std::string score_text(double score) { return std::isfinite(score) ? fixed(score, 1) : "diverged"; }
 json score_json(double score) { return std::isfinite(score) ? json(score) : json("diverged"); }
 json finite_or_null(const std::vector<double>& values, double value) { return values.empty() ? json() : json(value); }
+
+json confirmation_json(const TrialScores::Confirmation& c) {
+  if (!c.needed) return {{"needed", false}};
+  json j = {{"needed", true}, {"units", c.units}, {"delta", c.delta},
+            {"paired_unit_spread", std::isfinite(c.spread) ? json(c.spread) : json()}};
+  if (c.test)
+    j.update({{"mean_difference", score_json(c.test->mean)}, {"se", std::isfinite(c.test->se) ? json(c.test->se) : json()},
+              {"p", c.test->p}, {"adopted", c.test->adopted}, {"winner_units", c.winner}, {"default_units", c.defaults}});
+  return j;
+}
+
+// tune.md's account of a search's confirmation.
+std::string confirmation_text(const TrialScores& t) {
+  const TrialScores::Confirmation& c = t.confirmation;
+  if (!c.needed) return "not needed (the defaults won)";
+  const std::string head = "c" + std::to_string(t.state.winner) + " − defaults " +
+                           (std::isfinite(c.test->mean) ? fixed(c.test->mean, 1) : std::string("diverged")) + " (se " +
+                           fixed(c.test->se, 1) + ") over " + std::to_string(c.units) + " units, p " + short_number(c.test->p);
+  return head + (c.test->adopted ? ": adopted" : ": not confirmed, the defaults stay");
+}
 
 }  // namespace
 
@@ -204,8 +360,13 @@ void write_tune_results(const fs::path& dir, const TunePlan& plan, const std::ve
      << ". Score: the mean over the datasets of the mean final return over a candidate's units. "
      << "Sensitivity: the spread of the first rung's scores over all candidates (one unit each). A candidate with a "
         "diverged run scores \"diverged\", below every other, and is left out of the spread.\n\n"
+     << "The confirmation (docs/tuning.md §Why a winner must be confirmed): a winner that is not the defaults "
+        "replaces them only when it beats them on fresh tuning seeds, paired by seed, by a one-sided t test at α = "
+     << short_number(space.confirmation.alpha) << ", on units sized for power " << short_number(space.confirmation.power)
+     << " at δ; the runs column counts its runs too.\n\n"
      << "| scenario | algorithm | winner | default score | winner score | units | default's rank at rung 1 | "
-        "rung-1 spread (min, max) | rung-1 sd | runs | core-hours |\n|---|---|---|---:|---:|---:|---:|---|---:|---:|---:|\n";
+        "rung-1 spread (min, max) | rung-1 sd | confirmation | runs | core-hours |\n"
+        "|---|---|---|---:|---:|---:|---:|---|---:|---|---:|---:|\n";
   for (const TrialScores& t : searches) {
     const std::size_t last = space.rungs.size() - 1;
     json trials = json::array();
@@ -229,7 +390,9 @@ void write_tune_results(const fs::path& dir, const TunePlan& plan, const std::ve
     const double winner_score = *t.state.scores[last][static_cast<std::size_t>(t.state.winner)];
     results[t.scenario][t.algo] = {
         {"winner", t.state.winner},
-        {"overrides", t.overrides[static_cast<std::size_t>(t.state.winner)]},
+        {"adopted", t.adopted()},
+        {"confirmation", confirmation_json(t.confirmation)},
+        {"overrides", t.overrides[static_cast<std::size_t>(t.adopted())]},
         {"winner_score", score_json(winner_score)},
         {"default_score_rung1", score_json(default_first)},
         {"default_rank_rung1", rank},
@@ -249,7 +412,7 @@ void write_tune_results(const fs::path& dir, const TunePlan& plan, const std::ve
        << (std::isfinite(default_first) ? std::to_string(rank) + " of " + std::to_string(first.size()) : std::string("—"))
        << (diverged > 0 ? " (" + std::to_string(diverged) + " diverged)" : "") << " | "
        << (first.empty() ? std::string("—") : fixed(low, 1) + ", " + fixed(high, 1)) << " | " << (first.empty() ? "—" : fixed(sd, 1))
-       << " | " << t.runs << " | "
+       << " | " << confirmation_text(t) << " | " << t.runs << " | "
        << fixed(t.wall_s / 3600, 2) << " |\n";
   }
   md << "\nIn all: " << total_runs << " runs, " << fixed(total_s / 3600, 2)

@@ -236,9 +236,10 @@ TEST_F(SlurmCluster, TuneSubmitsARungAnInvocationToTheLocalBackendsWinner) {
   const Result l = run_rapid(tune + " --jobs 2 --out " + local.string());
   ASSERT_EQ(l.exit_code, 0) << l.output;
 
-  // Rung 1 (4 candidates), rung 2 (the better 2), then the results: three invocations.
+  // Rung 1 (4 candidates), rung 2 (the better 2), the confirmation of the winner (not the
+  // defaults), then the results: four invocations.
   int invocations = 0;
-  for (; invocations < 5 && !fs::exists(slurm / "tuned.json"); ++invocations) {
+  for (; invocations < 6 && !fs::exists(slurm / "tuned.json"); ++invocations) {
     const Result s = run_rapid(tune + " --backend slurm --out " + slurm.string());
     ASSERT_EQ(s.exit_code, 0) << s.output;
     if (fs::exists(slurm / "tuned.json")) {
@@ -249,7 +250,7 @@ TEST_F(SlurmCluster, TuneSubmitsARungAnInvocationToTheLocalBackendsWinner) {
     ASSERT_FALSE(submitted_ids(s.output).empty()) << s.output;
     ASSERT_TRUE(wait_for_jobs(submitted_ids(s.output), kTimeoutS)) << "the rung did not finish in time\n" << s.output;
   }
-  EXPECT_EQ(invocations, 2);  // two rungs submitted; the third invocation wrote the results
+  EXPECT_EQ(invocations, 3);  // two rungs and the confirmation submitted; the fourth invocation wrote the results
   nlohmann::json a = read_json(slurm / "tuned.json"), b = read_json(local / "tuned.json");
   for (nlohmann::json* t : {&a, &b}) {
     t->erase("wall_s");
@@ -257,8 +258,8 @@ TEST_F(SlurmCluster, TuneSubmitsARungAnInvocationToTheLocalBackendsWinner) {
   }
   EXPECT_EQ(a, b);
   EXPECT_EQ(read_json(slurm / "tuned-grid.json"), read_json(local / "tuned-grid.json"));
-  for (int k = 0; k < 4; ++k) {
-    const fs::path c = "c" + std::to_string(k);
+  for (const std::string folder : {"c0", "c1", "c2", "c3", "confirm/c0"}) {
+    const fs::path c = folder;
     const auto local_records = comparable_run_records(local / c, slurm / c);
     const auto slurm_records = comparable_run_records(slurm / c, local / c);
     EXPECT_EQ(slurm_records.size(), local_records.size()) << c;

@@ -52,6 +52,7 @@ TuneFiles write_tiny_tune(const fs::path& dir) {
       {"candidates", 4},
       {"sampler_seed", 3},
       {"rungs", {1, 2}},
+      {"confirmation", {{"delta", 400}}},  // pendulum has no decision margin of its own; the planted gap is ~600
       {"trial_config", {{"eval_every", 1000000}, {"eval_episodes", 1}, {"final_eval_episodes", 3}}},
       {"keys", {{"actor_lr", {{"log_uniform", {3e-4, 3e-3}}}}}}};
   const TuneFiles f{dir / "g.json", dir / "space.json"};

@@ -27,6 +27,11 @@ TEST(TunedGrid, DefaultWinnersKeepTheirCellsAndTheOthersRunTheirOverrides) {
       // Every other search keeps the defaults; the rest win with candidates 1 … n−1 in turn.
       const int i = static_cast<int>(searches.size());
       t.state.winner = i % 2 == 0 ? 0 : 1 + (i / 2) % (plan.space.candidates - 1);
+      if (t.state.winner != 0) {  // confirmed: its settings replace the defaults
+        t.confirmation.needed = true;
+        t.confirmation.test = ConfirmationTest{};
+        t.confirmation.test->adopted = true;
+      }
       searches.push_back(std::move(t));
     }
   const Grid tuned = parse_grid(tuned_grid(plan, searches), "tuned-grid.json");
