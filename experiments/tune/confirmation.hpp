@@ -54,4 +54,19 @@ struct TuningOutcomes {
 TuningOutcomes simulate_tuning(const SearchSpace& space, const std::vector<double>& means, double sd, double rho,
                                bool confirm, int confirm_units, double alpha, int experiments, std::uint64_t seed);
 
+// A tuning curve (issue #71, "honest sensitivity"): the expected best of k candidates drawn at
+// random without replacement from `scores` (each one unit's score of a candidate), exactly, over
+// every such draw; −∞ (a diverged candidate) is the lowest score. With a 95 % interval from
+// resampling the candidates (percentile bootstrap, `replicates`, seeded), and what noise alone
+// would give: `unit_noise` × the expected best of k standard normals, the gain k equal candidates
+// show by chance.
+struct TuningCurvePoint {
+  int k = 0;
+  double expected_best = 0.0, lo = 0.0, hi = 0.0;
+  double noise_alone = 0.0;  // expected best of k equal candidates above their mean
+};
+double expected_best_of(std::vector<double> scores, int k);
+std::vector<TuningCurvePoint> tuning_curve(const std::vector<double>& scores, double unit_noise, int replicates,
+                                           std::uint64_t seed);
+
 }  // namespace rapid

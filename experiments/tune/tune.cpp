@@ -337,10 +337,11 @@ json confirmation_json(const TrialScores::Confirmation& c) {
 std::string confirmation_text(const TrialScores& t) {
   const TrialScores::Confirmation& c = t.confirmation;
   if (!c.needed) return "not needed (the defaults won)";
-  const std::string head = "c" + std::to_string(t.state.winner) + " − defaults " +
-                           (std::isfinite(c.test->mean) ? fixed(c.test->mean, 1) : std::string("diverged")) + " (se " +
-                           fixed(c.test->se, 1) + ") over " + std::to_string(c.units) + " units, p " + short_number(c.test->p);
-  return head + (c.test->adopted ? ": adopted" : ": not confirmed, the defaults stay");
+  std::string text = std::string("c").append(std::to_string(t.state.winner)).append(" − defaults ");
+  text.append(std::isfinite(c.test->mean) ? fixed(c.test->mean, 1) : std::string("diverged")).append(" (se ");
+  text.append(fixed(c.test->se, 1)).append(") over ").append(std::to_string(c.units)).append(" units, p ");
+  text.append(short_number(c.test->p)).append(c.test->adopted ? ": adopted" : ": not confirmed, the defaults stay");
+  return text;
 }
 
 }  // namespace
@@ -414,6 +415,54 @@ void write_tune_results(const fs::path& dir, const TunePlan& plan, const std::ve
        << (first.empty() ? std::string("—") : fixed(low, 1) + ", " + fixed(high, 1)) << " | " << (first.empty() ? "—" : fixed(sd, 1))
        << " | " << confirmation_text(t) << " | " << t.runs << " | "
        << fixed(t.wall_s / 3600, 2) << " |\n";
+  }
+  // Honest sensitivity (issue #71): does a method gain from tuning, or only look as if it did?
+  md << "\n## Sensitivity: a gain from tuning, or noise?\n\n"
+        "Per search: the spread (sd) of the candidates' first-rung scores (one unit each) against the noise of one "
+        "unit's score (the paired unit spread of the later rungs over √2), and the tuning curve: the expected best "
+        "first-rung score of k candidates drawn at random, above the defaults' (95 % interval: the candidates "
+        "resampled), beside what k candidates equal to the defaults would show by chance (the noise × the expected "
+        "best of k standard normals). A curve within its noise is a method that only looks tuned.\n\n"
+        "| scenario | algorithm | candidates' sd | one unit's noise |";
+  std::vector<int> ks;  // 2, half the candidates, all of them
+  for (int k : {2, (space.candidates + 1) / 2, space.candidates})
+    if (k >= 2 && k <= space.candidates && std::find(ks.begin(), ks.end(), k) == ks.end()) ks.push_back(k);
+  for (int k : ks) md << " k = " << k << ": best − defaults (noise alone) |";
+  md << "\n|---|---|---:|---:|";
+  for (std::size_t i = 0; i < ks.size(); ++i) md << "---:|";
+  md << "\n";
+  for (const TrialScores& t : searches) {
+    std::vector<double> first;
+    for (const auto& s : t.state.scores.front())
+      if (s) first.push_back(*s);
+    const double noise = paired_unit_spread(t.unit_scores) / std::sqrt(2.0);
+    const std::vector<TuningCurvePoint> curve = tuning_curve(first, std::isfinite(noise) ? noise : 0.0, 2000, 71);
+    const double defaults = *t.state.scores.front()[0];
+    std::vector<double> finite_first;
+    for (double s : first)
+      if (std::isfinite(s)) finite_first.push_back(s);
+    json points = json::array();
+    for (const TuningCurvePoint& p : curve)
+      points.push_back({{"k", p.k}, {"expected_best", score_json(p.expected_best)}, {"ci", {score_json(p.lo), score_json(p.hi)}},
+                        {"noise_alone", std::isfinite(noise) ? json(p.noise_alone) : json()}});
+    results[t.scenario][t.algo]["sensitivity"] = {
+        {"candidates_sd", finite_first.size() > 1 ? json(std::sqrt(sample_variance(finite_first))) : json()},
+        {"unit_noise", std::isfinite(noise) ? json(noise) : json()},
+        {"tuning_curve", points}};
+    const auto cell = [&](int k) -> std::string {
+      if (k > static_cast<int>(curve.size())) return "—";
+      const TuningCurvePoint& p = curve[static_cast<std::size_t>(k - 1)];
+      if (!std::isfinite(p.expected_best) || !std::isfinite(defaults)) return "—";
+      std::string text = fixed(p.expected_best - defaults, 1);  // (append: GCC 12's false -Wrestrict on "a" + b)
+      text.append(" [").append(std::isfinite(p.lo) ? fixed(p.lo - defaults, 1) : "—").append(", ");
+      text.append(fixed(p.hi - defaults, 1)).append("] (").append(std::isfinite(noise) ? fixed(p.noise_alone, 1) : "—").append(")");
+      return text;
+    };
+    md << "| " << t.scenario << " | " << find_algorithm(t.algo).display_name << " | "
+       << (finite_first.size() > 1 ? fixed(std::sqrt(sample_variance(finite_first)), 1) : "—") << " | "
+       << (std::isfinite(noise) ? fixed(noise, 1) : "—") << " |";
+    for (int k : ks) md << " " << cell(k) << " |";
+    md << "\n";
   }
   md << "\nIn all: " << total_runs << " runs, " << fixed(total_s / 3600, 2)
      << " core-hours of training and evaluation (the records' wall time). The tuned grid, on the grid's own seeds: "

@@ -58,6 +58,22 @@ TEST(Confirmation, TheSpreadOfPairedUnitsIsTheirDifferencesSd) {
   EXPECT_TRUE(std::isnan(paired_unit_spread({{1}, {2}})));
 }
 
+// The tuning curve (issue #71 item 4): the expected best of k candidates drawn without replacement,
+// exactly; and the gain equal candidates show by chance, E[max of k standard normals] × the noise.
+TEST(TuningCurve, IsTheExactExpectedBestAndItsNoiseAlone) {
+  EXPECT_DOUBLE_EQ(expected_best_of({4, 1, 3, 2}, 1), 2.5);
+  EXPECT_NEAR(expected_best_of({4, 1, 3, 2}, 2), 20.0 / 6.0, 1e-12);  // the six pairs' maxima: 2, 3, 4, 3, 4, 4
+  EXPECT_DOUBLE_EQ(expected_best_of({4, 1, 3, 2}, 4), 4.0);
+  EXPECT_TRUE(std::isnan(expected_best_of({1, 2}, 3)));
+  const std::vector<TuningCurvePoint> curve = tuning_curve({0, 0, 0, 0}, 2.0, 200, 9);
+  ASSERT_EQ(curve.size(), 4u);
+  EXPECT_NEAR(curve[1].noise_alone, 2.0 / std::sqrt(M_PI), 0.03);  // E[max of 2] = 1/√π
+  EXPECT_NEAR(curve[3].noise_alone, 2.0 * 1.0294, 0.04);            // E[max of 4] = 1.0294
+  EXPECT_EQ(curve[3].expected_best, 0.0);
+  EXPECT_EQ(curve[3].lo, 0.0);
+  EXPECT_EQ(curve[3].hi, 0.0);
+}
+
 // When the defaults are truly best, by half a unit of seed noise, halving alone adopts a worse
 // setting most of the time; with the confirmation, at most α (whatever the units).
 TEST(TuningProcedure, AdoptsAWorseSettingAtMostAlphaWithTheConfirmation) {

@@ -40,6 +40,10 @@ TEST(TuneCli, FindsThePlantedSettingAndResumesAfterAKill) {
   EXPECT_GE(units, 3);
   EXPECT_EQ(confirmation["winner_units"].size(), static_cast<std::size_t>(units));
   EXPECT_EQ(tuned["runs"], 4 + 2 + 2 * units);  // 4 candidates × 1 unit, the better 2 × 1 more, both confirmed
+  // Issue #71 item 4: the search's sensitivity, its tuning curve beside the noise.
+  ASSERT_EQ(search["sensitivity"]["tuning_curve"].size(), 4u);
+  EXPECT_GT(search["sensitivity"]["unit_noise"].get<double>(), 0.0);
+  EXPECT_NE(read_file((out / "tune.md").string()).find("## Sensitivity: a gain from tuning, or noise?"), std::string::npos);
   const nlohmann::json fresh = read_json(out / "confirm/c0/jobs/pendulum/none/ddpg/seed54/record.json");
   EXPECT_EQ(fresh["status"], "ok");  // the first seed none of the search used
   // The trials evaluated once at the end, with the space's episodes.
