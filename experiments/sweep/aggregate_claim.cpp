@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/json_input.hpp"
+#include "experiments/sweep/claim_fields.hpp"
 
 namespace rapid {
 
@@ -14,16 +15,8 @@ namespace {
 
 using nlohmann::json;
 
-[[noreturn]] void fail(const std::string& field, const std::string& problem) {
-  throw std::invalid_argument(field + ": " + problem);
-}
-
-std::string text(const json& j, const std::string& key, const std::string& field) {
-  if (!j.contains(key)) fail(field + "." + key, "missing");
-  if (!j[key].is_string() || j[key].get<std::string>().empty())
-    fail(field + "." + key, "expected a non-empty string, got " + json_excerpt(j[key]));
-  return j[key].get<std::string>();
-}
+using claim_fields::fail;
+using claim_fields::text;
 
 // A fixed-value key: absent, or exactly `value` (the only analysis implemented).
 void fixed_value(const json& j, const std::string& key, const std::string& value, const std::string& field) {

@@ -8,6 +8,7 @@
 
 #include "core/contains.hpp"
 #include "core/json_input.hpp"
+#include "experiments/sweep/claim_fields.hpp"
 #include "core/printable.hpp"
 
 namespace rapid {
@@ -18,9 +19,8 @@ namespace {
 
 using nlohmann::json;
 
-[[noreturn]] void fail(const std::string& field, const std::string& problem) {
-  throw std::invalid_argument(field + ": " + problem);
-}
+using claim_fields::fail;
+using claim_fields::text;
 
 const std::vector<std::pair<std::string, ClaimKind>> kKinds = {{"most_rows", ClaimKind::kMostRows},
                                                                {"every_row", ClaimKind::kEveryRow},
@@ -36,13 +36,6 @@ std::set<std::string> kind_keys(ClaimKind kind) {
     case ClaimKind::kBcWindows: return {"algo", "scenario", "windows"};
   }
   return {};
-}
-
-std::string text(const json& j, const std::string& key, const std::string& field) {
-  if (!j.contains(key)) fail(field + "." + key, "missing");
-  if (!j[key].is_string() || j[key].get<std::string>().empty())
-    fail(field + "." + key, "expected a non-empty string, got " + json_excerpt(j[key]));
-  return j[key].get<std::string>();
 }
 
 std::vector<std::string> names(const json& j, const std::string& key, const std::string& field) {
