@@ -91,22 +91,24 @@ int print_plan(const TunePlan& plan, const std::string& bench_path, const std::v
       const double run_s = it->value("train_s", 0.0) + it->value("eval_s_max", 0.0) * episodes(trial) / episodes(profile);
       const double hours = run_s * units * per_unit / 3600;
       total_h += hours;
-      // The confirmation, should the winner not be the defaults: both on its units of fresh seeds;
-      // sized once the search is known, else at most all of the fresh seeds.
-      const auto known = so_far ? std::find_if(so_far->begin(), so_far->end(),
-                                               [&](const TrialScores& t) { return t.scenario == scenario && t.algo == algo; })
-                                : std::vector<TrialScores>::const_iterator{};
-      const bool sized = so_far && known != so_far->end() && known->state.finished();
-      const int confirm_units = sized ? (known->confirmation.needed ? known->confirmation.units : 0)
-                                      : confirmation_max_units(plan, algo);
-      confirm_runs += 2 * confirm_units * per_unit;
-      confirm_h += run_s * 2 * confirm_units * per_unit / 3600;
-      std::cout << scenario << "\t" << algo << "\t" << units * per_unit << "\t" << fixed(run_s, 1) << "\t" << fixed(hours, 2);
+      // The search as the folder's records show it, when there is a folder.
+      const TrialScores* known = nullptr;
       if (so_far) {
         const auto found = std::find_if(so_far->begin(), so_far->end(),
                                         [&](const TrialScores& t) { return t.scenario == scenario && t.algo == algo; });
         if (found == so_far->end()) throw std::logic_error("replay_tune has no search of " + scenario + "/" + algo);
-        const TrialScores& t = *found;
+        known = &*found;
+      }
+      // The confirmation, should the winner not be the defaults: both on its units of fresh seeds;
+      // sized once the search has finished halving, else at most all of the fresh seeds.
+      const int confirm_units = known && known->state.finished()
+                                    ? (known->confirmation.needed ? known->confirmation.units : 0)
+                                    : confirmation_max_units(plan, algo);
+      confirm_runs += 2 * confirm_units * per_unit;
+      confirm_h += run_s * 2 * confirm_units * per_unit / 3600;
+      std::cout << scenario << "\t" << algo << "\t" << units * per_unit << "\t" << fixed(run_s, 1) << "\t" << fixed(hours, 2);
+      if (known) {
+        const TrialScores& t = *known;
         const double spent_per_run = t.runs > 0 ? t.wall_s / t.runs : run_s;  // no run yet: the plan's
         done_runs += t.runs;
         spent_h += t.wall_s / 3600;
@@ -181,7 +183,7 @@ int tune_command(const TuneOptions& o) {
     }
     std::vector<TrialJobs> unsuccessful;  // trials whose sweep did not end ok: a diverged run, or a failed one
     for (const TrialJobs& trials : missing) {
-      const fs::path folder = trials.confirming ? confirming_dir(dir, trials.candidate) : candidate_dir(dir, trials.candidate);
+      const fs::path folder = trials_dir(dir, trials);
       // Candidate 0 starts from --reuse-datasets; the others, and every confirmation folder, copy
       // its references and datasets once it is a sweep folder (on Slurm its first rung may not
       // have run yet).
@@ -207,8 +209,7 @@ int tune_command(const TuneOptions& o) {
                  s.selection.cells == trials.selection.cells && s.selection.seeds == trials.selection.seeds;
         });
         if (retry) {
-          const fs::path where = trials.confirming ? confirming_dir(dir, trials.candidate) : candidate_dir(dir, trials.candidate);
-          std::cerr << "rapid tune: trials of candidate " << trials.candidate << " failed (rapid status " << where.string()
+          std::cerr << "rapid tune: trials of candidate " << trials.candidate << " failed (rapid status " << trials_dir(dir, trials).string()
                     << "); run the same command again to retry them\n";
           return kExitFailed;
         }

@@ -148,11 +148,11 @@ std::string last_log_line(const SweepFolder& folder, const SweepJob& job) {
   std::string tail(static_cast<std::size_t>(size - from), '\0');
   in.read(tail.data(), static_cast<std::streamsize>(tail.size()));
   tail.resize(static_cast<std::size_t>(in.gcount()));
-  std::size_t end = tail.find_last_not_of(" \t\r\n");
+  const std::size_t end = tail.find_last_not_of(" \t\r\n");
   if (end == std::string::npos) return "";
-  const std::size_t start = tail.rfind('\n', end);
-  const std::string line = tail.substr(start == std::string::npos ? 0 : start + 1, end + 1 - (start == std::string::npos ? 0 : start + 1));
-  return excerpt(line);
+  const std::size_t newline = tail.rfind('\n', end);
+  const std::size_t begin = newline == std::string::npos ? 0 : newline + 1;
+  return excerpt(std::string_view(tail).substr(begin, end + 1 - begin));
 }
 
 }  // namespace rapid

@@ -73,10 +73,10 @@ json candidate_document(const Grid& grid, const SearchSpace& space, int k, const
 
 // One search's complete units in one candidate's folder: per unit, the mean over the datasets of
 // its runs' final returns (a diverged run: −∞), in unit order until the first unit not complete.
-// With `count`, adds its finished runs and their wall time to `t`.
+// Adds its finished runs and their wall time to `t`.
 std::vector<double> unit_scores_in(const SweepFolder& folder, const std::map<std::pair<std::string, std::uint64_t>, const SweepJob*>& jobs,
                                    const Grid& grid, TrialScores& t, int units,
-                                   const std::function<std::vector<std::uint64_t>(int)>& seeds_of, bool count) {
+                                   const std::function<std::vector<std::uint64_t>(int)>& seeds_of) {
   std::vector<double> scores;
   bool gap = false;
   for (int u = 0; u < units; ++u) {
@@ -91,16 +91,28 @@ std::vector<double> unit_scores_in(const SweepFolder& folder, const std::map<std
         const bool diverged = r.status == "diverged" && r.hash_checked;
         if (!r.done() && !diverged) continue;
         ++done;
-        if (count) {
-          ++t.runs;
-          t.wall_s += r.record->value("timing", json::object()).value("wall_s", 0.0);
-        }
+        ++t.runs;
+        t.wall_s += r.record->value("timing", json::object()).value("wall_s", 0.0);
         sum += diverged ? -std::numeric_limits<double>::infinity() : r.record->at("final").at("return_mean").get<double>();
       }
     if (done < expected) gap = true;
     if (!gap) scores.push_back(sum / expected);
   }
   return scores;
+}
+
+// The same per unit from a search's returns already read (per dataset, in unit order, `per_unit`
+// seeds a unit, each cut at its first gap), summed in unit_scores_in's order.
+std::vector<double> unit_scores_from(const std::vector<std::vector<double>>& returns, std::size_t per_unit) {
+  std::vector<double> scores;
+  for (std::size_t u = 0;; ++u) {
+    double sum = 0.0;
+    for (const std::vector<double>& r : returns) {
+      if (r.size() < (u + 1) * per_unit) return scores;
+      for (std::size_t i = u * per_unit; i < (u + 1) * per_unit; ++i) sum += r[i];
+    }
+    scores.push_back(sum / static_cast<double>(returns.size() * per_unit));
+  }
 }
 
 std::map<std::pair<std::string, std::uint64_t>, const SweepJob*> cell_jobs(const SweepFolder& folder) {
@@ -114,6 +126,9 @@ std::map<std::pair<std::string, std::uint64_t>, const SweepJob*> cell_jobs(const
 
 fs::path candidate_dir(const fs::path& dir, int k) { return dir / std::string("c").append(std::to_string(k)); }
 fs::path confirming_dir(const fs::path& dir, int k) { return candidate_dir(dir / "confirm", k); }
+fs::path trials_dir(const fs::path& dir, const TrialJobs& trials) {
+  return trials.confirming ? confirming_dir(dir, trials.candidate) : candidate_dir(dir, trials.candidate);
+}
 
 int confirmation_max_units(const TunePlan& plan, const std::string& algo) {
   return static_cast<int>(plan.confirmation_seeds.size() / seeds_per_unit(plan.grid, algo));
@@ -194,9 +209,9 @@ void replay_confirmations(const fs::path& dir, const TunePlan& plan, std::vector
     conf.units = std::isfinite(conf.spread) ? confirmation_units(conf.spread, conf.delta, c.alpha, c.power, most) : most;
     const auto seeds_of = [&](int u) { return confirmation_unit_seeds(plan, t.algo, u); };
     const Folder& winner = folder_of(t.state.winner);
-    conf.winner = unit_scores_in(winner.folder, winner.jobs, plan.grid, t, conf.units, seeds_of, true);
+    conf.winner = unit_scores_in(winner.folder, winner.jobs, plan.grid, t, conf.units, seeds_of);
     const Folder& defaults = folder_of(0);
-    conf.defaults = unit_scores_in(defaults.folder, defaults.jobs, plan.grid, t, conf.units, seeds_of, true);
+    conf.defaults = unit_scores_in(defaults.folder, defaults.jobs, plan.grid, t, conf.units, seeds_of);
     if (static_cast<int>(conf.winner.size()) == conf.units && static_cast<int>(conf.defaults.size()) == conf.units)
       conf.test = confirm_winner(conf.winner, conf.defaults, c.alpha);
   }
@@ -220,8 +235,6 @@ std::vector<TrialScores> replay_tune(const fs::path& dir, const TunePlan& plan) 
     const SweepFolder folder = make_sweep_folder(candidate_dir(dir, k), plan.candidates[static_cast<std::size_t>(k)]);
     const auto jobs = cell_jobs(folder);
     for (TrialScores& t : searches) {
-      t.unit_scores.push_back(unit_scores_in(folder, jobs, plan.grid, t, most,
-                                             [&](int u) { return seeds_of_unit(space, plan.grid, t.algo, u); }, false));
       t.overrides.push_back(candidate_overrides(space, t.scenario, t.algo, k));
       const std::vector<std::string> datasets = datasets_of(plan.grid, t.algo);
       std::vector<std::vector<double>> returns(datasets.size());  // per dataset, in unit order, until the first gap
@@ -249,6 +262,7 @@ std::vector<TrialScores> replay_tune(const fs::path& dir, const TunePlan& plan) 
           t.scores_by_units[static_cast<std::size_t>(k)][static_cast<std::size_t>(u + 1)] = sum / static_cast<double>(returns.size());
         }
       }
+      t.unit_scores.push_back(unit_scores_from(returns, seeds_per_unit(plan.grid, t.algo)));
     }
   }
   for (TrialScores& t : searches)
@@ -338,7 +352,7 @@ std::string confirmation_text(const TrialScores& t) {
   const TrialScores::Confirmation& c = t.confirmation;
   if (!c.needed) return "not needed (the defaults won)";
   std::string text = std::string("c").append(std::to_string(t.state.winner)).append(" − defaults ");
-  text.append(std::isfinite(c.test->mean) ? fixed(c.test->mean, 1) : std::string("diverged")).append(" (se ");
+  text.append(score_text(c.test->mean)).append(" (se ");
   text.append(fixed(c.test->se, 1)).append(") over ").append(std::to_string(c.units)).append(" units, p ");
   text.append(short_number(c.test->p)).append(c.test->adopted ? ": adopted" : ": not confirmed, the defaults stay");
   return text;
@@ -441,12 +455,13 @@ void write_tune_results(const fs::path& dir, const TunePlan& plan, const std::ve
     std::vector<double> finite_first;
     for (double s : first)
       if (std::isfinite(s)) finite_first.push_back(s);
+    const double spread = finite_first.size() > 1 ? std::sqrt(sample_variance(finite_first)) : NAN;
     json points = json::array();
     for (const TuningCurvePoint& p : curve)
       points.push_back({{"k", p.k}, {"expected_best", score_json(p.expected_best)}, {"ci", {score_json(p.lo), score_json(p.hi)}},
                         {"noise_alone", std::isfinite(noise) ? json(p.noise_alone) : json()}});
     results[t.scenario][t.algo]["sensitivity"] = {
-        {"candidates_sd", finite_first.size() > 1 ? json(std::sqrt(sample_variance(finite_first))) : json()},
+        {"candidates_sd", std::isfinite(spread) ? json(spread) : json()},
         {"unit_noise", std::isfinite(noise) ? json(noise) : json()},
         {"tuning_curve", points}};
     const auto cell = [&](int k) -> std::string {
@@ -459,7 +474,7 @@ void write_tune_results(const fs::path& dir, const TunePlan& plan, const std::ve
       return text;
     };
     md << "| " << t.scenario << " | " << find_algorithm(t.algo).display_name << " | "
-       << (finite_first.size() > 1 ? fixed(std::sqrt(sample_variance(finite_first)), 1) : "—") << " | "
+       << (std::isfinite(spread) ? fixed(spread, 1) : "—") << " | "
        << (std::isfinite(noise) ? fixed(noise, 1) : "—") << " |";
     for (int k : ks) md << " " << cell(k) << " |";
     md << "\n";

@@ -91,6 +91,8 @@ int confirmation_max_units(const TunePlan& plan, const std::string& algo);
 // The folder of candidate k, and of its confirmation runs.
 std::filesystem::path candidate_dir(const std::filesystem::path& dir, int k);
 std::filesystem::path confirming_dir(const std::filesystem::path& dir, int k);
+// The folder `trials` run in: confirming_dir or candidate_dir.
+std::filesystem::path trials_dir(const std::filesystem::path& dir, const TrialJobs& trials);
 
 // tune.json's content: what a later `rapid tune` into the same folder must match (the grid but
 // for its algorithms, and the space).
