@@ -33,6 +33,11 @@ struct StepResult {
   StepInfo info;
 };
 
+// Every entry of every observation lies in [-kObservationBound, kObservationBound]: each
+// environment's observe() normalises and clips into it (driving_env.cpp, pendulum.cpp). The
+// observation space a Gymnasium environment or a Minari dataset declares.
+inline constexpr float kObservationBound = 1.0f;
+
 class Env {
  public:
   virtual ~Env() = default;

@@ -544,3 +544,40 @@ TEST(RapidCli, AnUnknownSubcommandAndAnOutOfRangeCountAreNamed) {
                                              "beside", "tune", "rerun"}))
       << unknown;
 }
+
+// A sweep's prior dataset exported as a Minari dataset and imported back is the same file, byte
+// for byte, so a run on it is the same run: the same config hash, the same record (issue #70).
+TEST(RapidRun, AMinariRoundTripGivesTheSameRecord) {
+  rapid::testing::ScratchDir dir;
+  std::filesystem::create_directories(dir.file("sweep/datasets/pendulum"));
+  write_file_atomic(dir.file("sweep/grid.json"),
+                    R"({"name": "g", "scenarios": ["pendulum"], "datasets": ["medium"], "algos": ["rapid-rl"], "seeds": [0]})");
+  const std::string original = dir.file("sweep/datasets/pendulum/medium.h5");
+  write_dataset(original, random_pendulum_dataset(600));
+  const auto exported = rapid_cli("dataset export " + dir.file("sweep") + " --format minari --out " + dir.file("root"), true);
+  ASSERT_EQ(exported.exit_code, 0) << exported.text;
+  EXPECT_NE(exported.text.find("rapid/pendulum-short/medium-v0  3 episodes, 600 steps"), std::string::npos) << exported.text;
+  const auto imported =
+      rapid_cli("dataset import " + dir.file("root/rapid/pendulum-short/medium-v0") + " --out " + dir.file("back.h5"), true);
+  ASSERT_EQ(imported.exit_code, 0) << imported.text;
+  EXPECT_EQ(read_file(dir.file("back.h5")), read_file(original));
+
+  for (const auto& [job, file] : {std::pair{"a", original}, std::pair{"b", dir.file("back.h5")}})
+    ASSERT_EQ(rapid_cli("run " + kShort + "--algo rapid-rl --dataset " + file + " --seed 1 --out " + dir.file(job)).exit_code, 0);
+  nlohmann::json a = comparable(read_record(dir.file("a"))), b = comparable(read_record(dir.file("b")));
+  EXPECT_EQ(a["config_hash"], b["config_hash"]);
+  for (nlohmann::json* r : {&a, &b}) r->erase("dataset_file"), (*r)["cell"].erase("dataset");  // the paths differ
+  EXPECT_EQ(a, b) << nlohmann::json::diff(a, b).dump();
+
+  // Exporting again over what is there writes nothing and says why.
+  const auto again = rapid_cli("dataset export " + dir.file("sweep") + " --out " + dir.file("root"), true);
+  EXPECT_EQ(again.exit_code, 2);
+  EXPECT_NE(again.text.find("medium-v0/data already exists"), std::string::npos) << again.text;
+  const auto over = rapid_cli("dataset import " + dir.file("root/rapid/pendulum-short/medium-v0") + " --out " + original, true);
+  EXPECT_EQ(over.exit_code, 2);
+  EXPECT_NE(over.text.find("already exists (--force replaces it)"), std::string::npos) << over.text;
+  const auto not_minari = rapid_cli("dataset import " + dir.file("sweep") + " --out " + dir.file("x.h5"), true);
+  EXPECT_EQ(not_minari.exit_code, 2);
+  EXPECT_NE(not_minari.text.find("is not a Minari dataset folder"), std::string::npos) << not_minari.text;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("x.h5")));
+}

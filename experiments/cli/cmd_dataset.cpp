@@ -15,6 +15,7 @@
 #include "core/dataset_stats.hpp"
 #include "envs/env.hpp"
 #include "experiments/cli/checks.hpp"
+#include "experiments/cli/cmd_dataset_minari.hpp"
 #include "experiments/cli/cli_config.hpp"
 #include "experiments/cli/commands.hpp"
 #include "experiments/cli/errors.hpp"
@@ -189,12 +190,14 @@ Command add_build(CLI::App& dataset) {
 }  // namespace
 
 Command add_dataset_command(CLI::App& parent) {
-  CLI::App* sub = parent.add_subcommand("dataset", "Prior datasets in D4RL-layout HDF5");
+  CLI::App* sub = parent.add_subcommand("dataset", "Prior datasets in D4RL-layout HDF5, and as Minari datasets");
   sub->require_subcommand(1);
   // One entry per action; the one that was given runs.
   auto actions = std::make_shared<std::vector<Command>>(std::vector<Command>{
       add_info(*sub),
       add_build(*sub),
+      add_export(*sub),
+      add_import(*sub),
   });
   return {sub, [actions] {
             for (const Command& action : *actions)
