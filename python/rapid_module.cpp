@@ -1,8 +1,8 @@
-// rapid_harness: the harness's scenarios, prior datasets and evaluation protocol from Python
-// (docs/python.md). Built by CMake beside `rapid` when pybind11 is installed; import it from the
-// build folder (PYTHONPATH=build). An Env follows Gymnasium's API; it steps the same C++
-// environment a `rapid run` trains in, writing each observation straight into a fresh numpy array.
-#include <pybind11/eval.h>
+// rapid_harness._core: the compiled part of the Python package rapid_harness (python/rapid_harness/,
+// docs/python.md): the harness's scenarios, prior datasets and evaluation protocol. Built by CMake
+// into build/rapid_harness/ when pybind11 is installed; import the package from the build folder
+// (PYTHONPATH=build). Its Env steps the same C++ environment a `rapid run` trains in, writing each
+// observation straight into a fresh numpy array; rapid_harness.Env gives it Gymnasium's type.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -19,6 +19,7 @@
 #include "core/clock.hpp"
 #include "core/contains.hpp"
 #include "core/dataset_io.hpp"
+#include "core/dataset_minari.hpp"
 #include "core/printable.hpp"
 #include "core/rng.hpp"
 #include "core/statistics.hpp"
@@ -26,6 +27,7 @@
 #include "experiments/run/config_keys.hpp"
 #include "experiments/run/external_record.hpp"
 #include "experiments/run/external_run.hpp"
+#include "experiments/run/gymnasium_spec.hpp"
 #include "experiments/run/run_config.hpp"
 #include "experiments/run/trainer.hpp"
 
@@ -50,26 +52,12 @@ RunConfig python_run_config(const std::string& scenario, const std::string& prof
   return python_config(scenario, profile, overrides).run;
 }
 
-// A Box space: gymnasium's when it can be imported, else an object with its attributes.
-py::object box(int n, float low, float high) {
-  py::array_t<float> lo(n), hi(n);
-  for (int i = 0; i < n; ++i) lo.mutable_at(i) = low, hi.mutable_at(i) = high;
-  try {
-    return py::module_::import("gymnasium.spaces").attr("Box")(lo, hi, py::make_tuple(n), py::dtype::of<float>());
-  } catch (const py::error_already_set&) {
-    return py::module_::import("rapid_harness").attr("Box")(lo, hi);
-  }
-}
-
 class PyEnv {
  public:
   PyEnv(const std::string& scenario, const std::string& profile, const py::object& config)
       : config_(python_run_config(scenario, profile, config)),
         env_(make_run_env(scenario, config_)),
-        driving_(is_driving_scenario(scenario)) {
-    observation_space = box(env_->obs_dim(), -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity());
-    action_space = box(env_->act_dim(), -1.0f, 1.0f);
-  }
+        driving_(is_driving_scenario(scenario)) {}
 
   py::tuple reset(const py::object& seed, const py::object& options) {
     live();
@@ -140,8 +128,9 @@ class PyEnv {
   }
   int horizon() { return live().horizon(); }
   std::string name() { return live().name(); }
-
-  py::object observation_space, action_space;
+  // Known after close() too: the spaces (rapid_harness/env.py) outlive the simulation.
+  int obs_dim() const { return obs_dim_; }
+  int act_dim() const { return act_dim_; }
 
  private:
   Env& live() {
@@ -158,6 +147,7 @@ class PyEnv {
   RunConfig config_;
   std::unique_ptr<Env> env_;
   bool driving_;  // a road, whose reward has terms
+  int obs_dim_ = env_->obs_dim(), act_dim_ = env_->act_dim();
   std::uint64_t run_seed_ = 0;
   std::uint64_t episode_ = 0;
   bool needs_reset_ = true;
@@ -166,7 +156,7 @@ class PyEnv {
 // A D4RL-layout file as a dict of numpy arrays (N rows each) and its metadata. The arrays share
 // the dataset's memory (its column-major obs_dim × N matrix is row-major N × obs_dim): no copy.
 py::dict load_dataset(const std::string& path) {
-  auto data = std::make_shared<Dataset>(read_dataset(path));
+  auto data = std::make_shared<Dataset>(is_minari_dataset(path) ? read_minari_dataset(path) : read_dataset(path));
   py::capsule owner(new std::shared_ptr<Dataset>(data), [](void* p) { delete static_cast<std::shared_ptr<Dataset>*>(p); });
   const auto n = static_cast<py::ssize_t>(data->size());
   const auto matrix = [&](Mat& m) {
@@ -378,7 +368,9 @@ class PyRunRecord {
 }  // namespace
 }  // namespace rapid
 
-PYBIND11_MODULE(rapid_harness, m) {
+// rapid_harness._core: the compiled part of the package; rapid_harness/__init__.py imports it
+// first and adds the Gymnasium side.
+PYBIND11_MODULE(_core, m) {
   using namespace rapid;
   m.doc() = "The RAPID-RL harness's scenarios, prior datasets and evaluation protocol (docs/python.md).";
   // Loaded by another interpreter than the one it was built for (a pyenv shim's python3, without
@@ -393,41 +385,19 @@ PYBIND11_MODULE(rapid_harness, m) {
                            "), with Debian's python3-numpy: run it with that interpreter, e.g. PYTHONPATH=build "
                            RAPID_MODULE_PYTHON " (docs/python.md)");
   }
-  // Box stands in for gymnasium.spaces.Box where gymnasium is not installed (Debian has no package).
-  py::exec(R"py(
-import numpy as _np
-
-class Box:
-    """A box of float32 vectors with gymnasium.spaces.Box's attributes (low, high, shape, dtype)."""
-
-    def __init__(self, low, high):
-        self.low = _np.asarray(low, dtype=_np.float32)
-        self.high = _np.asarray(high, dtype=_np.float32)
-        self.shape = self.low.shape
-        self.dtype = _np.dtype(_np.float32)
-        self._rng = _np.random.default_rng()
-
-    def seed(self, seed=None):
-        self._rng = _np.random.default_rng(seed)
-        return [seed]
-
-    def sample(self):
-        """Uniform where bounded, standard normal where unbounded (as gymnasium samples)."""
-        bounded = _np.isfinite(self.low) & _np.isfinite(self.high)
-        x = self._rng.standard_normal(self.shape)
-        x[bounded] = self._rng.uniform(self.low[bounded], self.high[bounded])
-        return x.astype(_np.float32)
-
-    def contains(self, x):
-        x = _np.asarray(x)
-        return x.shape == self.shape and bool(_np.all(x >= self.low)) and bool(_np.all(x <= self.high))
-
-    __contains__ = contains
-
-    def __repr__(self):
-        return f"Box({self.low.min()}, {self.high.max()}, {self.shape}, float32)"
-)py",
-           m.attr("__dict__"));
+  // Every observation entry lies in [-OBSERVATION_BOUND, OBSERVATION_BOUND] (envs/env.hpp).
+  m.attr("OBSERVATION_BOUND") = kObservationBound;
+  m.def(
+      "gymnasium_env_spec",
+      [](const std::string& scenario, const std::string& profile, const py::object& config) {
+        nlohmann::json overrides = nlohmann::json::object();
+        if (!config.is_none())
+          overrides = nlohmann::json::parse(py::module_::import("json").attr("dumps")(config).cast<std::string>());
+        return py::module_::import("json").attr("loads")(gymnasium_env_spec(scenario, profile, overrides).dump());
+      },
+      py::arg("scenario"), py::arg("profile"), py::arg("config") = py::none(),
+      "Gymnasium's EnvSpec (as a dict, as EnvSpec.to_json writes it) of a scenario in a profile: its id "
+      "rapid/<name>-<profile>-v0, the entry point rapid_harness:Env and the keyword arguments.");
   m.def("scenarios", [] { return env_names(); }, "The built-in scenario names (a scenario file's path works too).");
   m.def("profiles", [] { return config_profiles(); }, "The config profiles (short, flow).");
   m.def(
@@ -472,7 +442,7 @@ class Box:
       },
       py::arg("scenario"), py::arg("profile") = std::string(kDefaultProfile), py::arg("config") = py::none(),
       "The resolved config (a dict) an Env or a run of the scenario in the profile has, with `config` on top.");
-  py::class_<PyEnv>(m, "Env", "A scenario as a Gymnasium-style environment.")
+  py::class_<PyEnv>(m, "Env", "A scenario's C++ environment; rapid_harness.Env wraps it with its spaces.")
       .def(py::init<const std::string&, const std::string&, const py::object&>(), py::arg("scenario"),
            py::arg("profile") = std::string(kDefaultProfile), py::arg("config") = py::none())
       .def("reset", &PyEnv::reset, py::kw_only(), py::arg("seed") = py::none(), py::arg("options") = py::none())
@@ -482,8 +452,8 @@ class Box:
            "Benchmark baseline: seconds for `decisions` steps taken in C++ (scripts/bench-python-step).")
       .def_property_readonly("horizon", &PyEnv::horizon)
       .def_property_readonly("name", &PyEnv::name)
-      .def_readonly("observation_space", &PyEnv::observation_space)
-      .def_readonly("action_space", &PyEnv::action_space);
+      .def_property_readonly("obs_dim", &PyEnv::obs_dim)
+      .def_property_readonly("act_dim", &PyEnv::act_dim);
   // A file that is not a dataset, or does not fit, is a wrong input: ValueError's kind.
   py::register_exception<DatasetError>(m, "DatasetError", PyExc_ValueError);
   m.def("load_dataset", &load_dataset, py::arg("path"), "A D4RL-layout HDF5 file as numpy arrays and its metadata.");

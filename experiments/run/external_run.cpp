@@ -63,18 +63,15 @@ void keep_last_line(std::string& pending, std::string& last) {
   if (pending.size() > 4096) pending.erase(0, pending.size() - 4096);  // a line is shown, not kept whole
 }
 
-// The folder of the rapid_harness module this binary was built with (the build folder: the module
-// and the binary are built side by side), or "" when it is not there. An external command is a
-// job in its own folder, so a relative PYTHONPATH=build would not find it (issue #67).
+// The folder of the rapid_harness package this binary was built with (the build folder: the
+// package and the binary are built side by side), or "" when it is not there. An external command
+// is a job in its own folder, so a relative PYTHONPATH=build would not find it (issue #67).
 std::string module_folder() {
   std::error_code ec;
   const fs::path binary = fs::read_symlink("/proc/self/exe", ec);
   if (ec) return "";
-  for (const auto& entry : fs::directory_iterator(binary.parent_path(), ec)) {
-    const std::string name = entry.path().filename().string();
-    if (name.rfind("rapid_harness", 0) == 0 && entry.path().extension() == ".so") return binary.parent_path().string();
-  }
-  return "";
+  return fs::is_regular_file(binary.parent_path() / "rapid_harness" / "__init__.py", ec) ? binary.parent_path().string()
+                                                                                         : "";
 }
 
 // PYTHONPATH for the command: the module's folder first, then what the caller had.
