@@ -147,6 +147,13 @@ std::string file_image(H5::H5File& file) {
   return image;
 }
 
+std::string shape_text(const std::vector<hsize_t>& dims) {
+  if (dims.empty()) return "a scalar";
+  std::string s;
+  for (std::size_t i = 0; i < dims.size(); ++i) s += (i ? " × " : "") + std::to_string(dims[i]);
+  return "shape " + s;
+}
+
 std::string error_stack_detail(const std::string& fallback) {
   std::string innermost;
   H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, keep_innermost, &innermost);

@@ -32,6 +32,9 @@ bool is_bool_enum(hid_t type);
 // A short numpy-like name for an HDF5 datatype in messages: float32, int64, uint8, bool, ...
 std::string describe_type(hid_t type);
 
+// "shape 3 × 2" (or "a scalar") for an array's dimensions in messages.
+std::string shape_text(const std::vector<hsize_t>& dims);
+
 // The innermost description on HDF5's current error stack — the one that says what went wrong,
 // e.g. "truncated file: eof = …" — on one line, or `fallback` if the stack is empty. Clears the
 // stack.

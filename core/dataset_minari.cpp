@@ -254,28 +254,22 @@ class MinariReader {
     const H5::Group group = file.openGroup(name);
     const std::vector<hsize_t> obs = dims(group, e, "observations", H5T_FLOAT);
     if (obs.size() != 2 || obs[0] < 2 || obs[1] != static_cast<hsize_t>(obs_dim))
-      throw fail(where(e, "observations") + " has " + shape_text(obs) + ", expected (T + 1) × " + std::to_string(obs_dim) +
+      throw fail(where(e, "observations") + " has " + h5::shape_text(obs) + ", expected (T + 1) × " + std::to_string(obs_dim) +
                  " with T ≥ 1");
     const hsize_t t = obs[0] - 1;
     const std::vector<hsize_t> act = dims(group, e, "actions", H5T_FLOAT);
     if (act.size() != 2 || act[0] != t || act[1] != static_cast<hsize_t>(act_dim))
-      throw fail(where(e, "actions") + " has " + shape_text(act) + ", expected " + std::to_string(t) + " × " +
+      throw fail(where(e, "actions") + " has " + h5::shape_text(act) + ", expected " + std::to_string(t) + " × " +
                  std::to_string(act_dim));
     for (const char* key : {"rewards", "terminations", "truncations"}) {
       const std::vector<hsize_t> v = dims(group, e, key, std::strcmp(key, "rewards") == 0 ? H5T_FLOAT : H5T_NO_CLASS);
       if (!(v.size() == 1 || (v.size() == 2 && v[1] == 1)) || v[0] != t)
-        throw fail(where(e, key) + " has " + shape_text(v) + ", expected " + std::to_string(t));
+        throw fail(where(e, key) + " has " + h5::shape_text(v) + ", expected " + std::to_string(t));
     }
     return t;
   }
 
   std::string where(std::size_t e, const char* key) const { return episode_name(e) + "/" + key; }
-
-  static std::string shape_text(const std::vector<hsize_t>& dims) {
-    std::string s;
-    for (std::size_t i = 0; i < dims.size(); ++i) s += (i ? " × " : "") + std::to_string(dims[i]);
-    return dims.empty() ? "a scalar" : "shape " + s;
-  }
 
   // An array's shape, after checking it exists and has the right kind of type (H5T_NO_CLASS: a flag).
   std::vector<hsize_t> dims(const H5::Group& group, std::size_t e, const char* key, H5T_class_t kind) const {

@@ -20,13 +20,6 @@ struct StoredArray {
   hsize_t cols() const { return dims.size() < 2 ? 1 : dims[1]; }
 };
 
-std::string shape_text(const std::vector<hsize_t>& dims) {
-  if (dims.empty()) return "a scalar";
-  std::string s;
-  for (std::size_t i = 0; i < dims.size(); ++i) s += (i ? " × " : "") + std::to_string(dims[i]);
-  return "shape " + s;
-}
-
 // The six arrays, opened but not yet read.
 struct StoredArrays {
   StoredArray obs, act, rew, next_obs, term, tout;
@@ -161,12 +154,12 @@ class Reader {
 
   void require_matrix(const char* key, const StoredArray& a, const char* width_name) const {
     if (a.dims.size() != 2)
-      throw fail("'" + std::string(key) + "' has " + shape_text(a.dims) + ", expected 2-D (N × " + width_name + ")");
+      throw fail("'" + std::string(key) + "' has " + h5::shape_text(a.dims) + ", expected 2-D (N × " + width_name + ")");
   }
 
   void require_vector(const char* key, const StoredArray& a) const {
     if (a.dims.size() == 1 || (a.dims.size() == 2 && a.dims[1] == 1)) return;
-    throw fail("'" + std::string(key) + "' has " + shape_text(a.dims) + ", expected N or N × 1");
+    throw fail("'" + std::string(key) + "' has " + h5::shape_text(a.dims) + ", expected N or N × 1");
   }
 
   void require_width(const char* key, hsize_t cols, std::optional<int> expected) const {

@@ -5,11 +5,16 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <regex>
+#include <set>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "envs/env.hpp"
+#include "experiments/cli/errors.hpp"
 
 namespace rapid {
 
@@ -22,6 +27,29 @@ inline CLI::Validator seed_validator() {
         return digits ? "" : "must be a non-negative integer, got '" + s + "'";
       },
       "SEED");
+}
+
+// The seeds an option names, "100-109" or "100,105,107", each at most once and at most 1,000 of
+// them; anything else throws UsageError naming `option` (recheck's --seeds, replay-decide's
+// --initial-seeds).
+inline std::vector<std::uint64_t> seed_list(const std::string& option, const std::string& text) {
+  static const std::regex range(R"(([0-9]{1,9})-([0-9]{1,9}))"), list(R"([0-9]{1,9}(,[0-9]{1,9})*)");
+  std::smatch m;
+  std::vector<std::uint64_t> seeds;
+  if (std::regex_match(text, m, range)) {
+    const std::uint64_t a = std::stoull(m[1].str()), b = std::stoull(m[2].str());
+    if (a > b || b - a >= 1000) throw UsageError(option + ": '" + text + "' must be A-B with A ≤ B and at most 1,000 seeds");
+    for (std::uint64_t s = a; s <= b; ++s) seeds.push_back(s);
+  } else if (std::regex_match(text, list)) {
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, ',');) seeds.push_back(std::stoull(item));
+    if (std::set<std::uint64_t>(seeds.begin(), seeds.end()).size() != seeds.size())
+      throw UsageError(option + ": '" + text + "' names a seed twice");
+    if (seeds.size() > 1000) throw UsageError(option + ": '" + text + "' names more than 1,000 seeds");
+  } else {
+    throw UsageError(option + ": expected A-B or a comma-separated list of seeds, got '" + text + "'");
+  }
+  return seeds;
 }
 
 // A count given on the command line: digits only, at least `min`, at most nine digits. (CLI11's

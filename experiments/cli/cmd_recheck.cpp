@@ -4,8 +4,6 @@
 // and its recheck.md sets its verdicts beside the original's.
 #include <filesystem>
 #include <iostream>
-#include <regex>
-#include <set>
 #include <sstream>
 
 #include "core/atomic_file.hpp"
@@ -28,26 +26,6 @@ struct RecheckOptions {
   bool force = false;
   int jobs = 0;
 };
-
-// "100-109" or "100,105,107": the seeds, each at most once; throws UsageError naming --seeds.
-std::vector<int> parse_seeds(const std::string& text) {
-  static const std::regex range(R"(([0-9]{1,9})-([0-9]{1,9}))"), list(R"([0-9]{1,9}(,[0-9]{1,9})*)");
-  std::smatch m;
-  std::vector<int> seeds;
-  if (std::regex_match(text, m, range)) {
-    const int a = std::stoi(m[1].str()), b = std::stoi(m[2].str());
-    if (a > b || b - a >= 1000) throw UsageError("--seeds: '" + text + "' must be A-B with A ≤ B and at most 1,000 seeds");
-    for (int s = a; s <= b; ++s) seeds.push_back(s);
-  } else if (std::regex_match(text, list)) {
-    std::stringstream in(text);
-    for (std::string item; std::getline(in, item, ',');) seeds.push_back(std::stoi(item));
-    if (std::set<int>(seeds.begin(), seeds.end()).size() != seeds.size())
-      throw UsageError("--seeds: '" + text + "' names a seed twice");
-  } else {
-    throw UsageError("--seeds: expected A-B or a comma-separated list of seeds, got '" + text + "'");
-  }
-  return seeds;
-}
 
 // The verdict each claim got: the decided one where the summary has a decision rule, else the
 // point-mean one.
@@ -93,10 +71,9 @@ int recheck_command(const RecheckOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw UsageError("SWEEP_DIR: " + std::string(e.what()));
   }
-  const std::vector<int> seeds = parse_seeds(o.seeds);
-  for (int s : seeds)
-    if (std::find(original.grid.seeds.begin(), original.grid.seeds.end(), static_cast<std::uint64_t>(s)) !=
-        original.grid.seeds.end())
+  const std::vector<std::uint64_t> seeds = seed_list("--seeds", o.seeds);
+  for (const std::uint64_t s : seeds)
+    if (std::find(original.grid.seeds.begin(), original.grid.seeds.end(), s) != original.grid.seeds.end())
       throw UsageError("--seeds: seed " + std::to_string(s) + " is one of the sweep's own seeds; a recheck needs new ones");
   nlohmann::json doc = original.grid.normalized;
   doc["seeds"] = seeds;

@@ -38,22 +38,6 @@ struct ReplayOptions {
   DecideSettings fixed_plan;
 };
 
-// "200-209": the seeds a fixed-seed folder's replay takes as look 0.
-std::vector<std::uint64_t> seed_range(const std::string& text) {
-  const auto dash = text.find('-');
-  try {
-    if (dash == std::string::npos || dash == 0 || text.find_first_not_of("0123456789-") != std::string::npos)
-      throw std::invalid_argument("");
-    const std::uint64_t a = std::stoull(text.substr(0, dash)), b = std::stoull(text.substr(dash + 1));
-    if (b < a || b - a >= 1000) throw std::invalid_argument("");
-    std::vector<std::uint64_t> seeds;
-    for (std::uint64_t s = a; s <= b; ++s) seeds.push_back(s);
-    return seeds;
-  } catch (const std::exception&) {
-    throw UsageError("--initial-seeds: expected A-B with A ≤ B (at most 1,000 seeds), got '" + text + "'");
-  }
-}
-
 // Per scenario, a run's cost at the sweep's evaluation and the evaluation budget's gain
 // (report/eval_budget.hpp), from `sweep`'s records.
 // Refuses a sweep of another profile (other budgets and evaluation: its run times price nothing here).
@@ -83,7 +67,7 @@ int replay_decide_command(const ReplayOptions& o) {
   if (!o.initial_seeds.empty()) {
     if (fs::exists(plan_path, exists_ec))
       throw UsageError("--initial-seeds: FOLDER has a decide.json; its own looks are replayed without it");
-    initial = seed_range(o.initial_seeds);
+    initial = seed_list("--initial-seeds", o.initial_seeds);
     settings = o.fixed_plan;
     settings.rule = LookRule::kFreeze;
     if (const std::string problem = decide_plan_problem(static_cast<int>(initial.size()), settings); !problem.empty())
@@ -177,7 +161,7 @@ Command add_replay_decide_command(CLI::App& parent) {
   const CLI::Option* out =
       sub->add_option("--out", o->out, "also write the report to this file (default: print it only)");
   sub->add_option("--initial-seeds", o->initial_seeds,
-                  "A-B: a folder run on fixed seeds, replayed as if these seeds were look 0 and its next ones the blocks");
+                  "A-B (or a,b,c): a folder run on fixed seeds, replayed as if these seeds were look 0 and its next ones the blocks");
   const CLI::Option* block =
       sub->add_option("--block", o->fixed_plan.block, "with --initial-seeds: seeds per look (default 5)")->check(CLI::Range(1, 1000));
   const CLI::Option* max_seeds =

@@ -186,7 +186,11 @@ TEST_F(ReportCliTest, DecideAnalysesPrintAndWriteOnlyWhereAsked) {
   EXPECT_NE(out.text.find("| fixed, 10 seeds | 1 | 390 | 100 % |"), std::string::npos) << out.text;
   EXPECT_NE(out.text.find("Decisions lost to futility ("), std::string::npos) << out.text;
   EXPECT_EQ(listing(fixed_seeds), fixed_before);
+  // The seeds as a list are the same seeds (one parser for recheck's --seeds and this option).
+  EXPECT_EQ(rapid_cli("replay-decide " + fixed_seeds.string() + " --initial-seeds 100,101,102,103,104 --max-seeds 10", true).text,
+            out.text);
   for (const std::string bad : {"replay-decide " + committed.string() + " --initial-seeds 0-9",
+                                "replay-decide " + fixed_seeds.string() + " --initial-seeds 100,100",
                                 "replay-decide " + committed.string() + " --block 3",
                                 "replay-decide " + fixed_seeds.string() + " --initial-seeds 9-1",
                                 "replay-decide " + fixed_seeds.string() + " --initial-seeds 100-109 --max-seeds 5",
