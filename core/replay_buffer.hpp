@@ -90,7 +90,6 @@ class SymmetricSampler {
  public:
   SymmetricSampler(const ReplayBuffer* prior, const ReplayBuffer* online) : prior_(prior), online_(online) {}
   void sample(Rng& rng, Batch& batch) const;
-  bool has_prior() const { return prior_ != nullptr; }
   // The online columns of a batch of `batch_size`: B − B/2 with a prior buffer, else B.
   int online_count(int batch_size) const { return batch_size - (prior_ ? batch_size / 2 : 0); }
 

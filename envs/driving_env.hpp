@@ -105,7 +105,6 @@ class DrivingEnv final : public Env {
   const driving::RewardWeights& reward_weights() const { return weights_; }
   // The scenario's hook (nullptr without one), e.g. for a test to read what it did.
   const ScenarioHook* hook() const { return hook_.get(); }
-  bool builtin_driver() const { return builtin_; }
 
  private:
   // A descriptor feature with its geometry resolved on the road (once, at the first reset).
