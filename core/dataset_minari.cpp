@@ -106,34 +106,6 @@ DatasetError write_error(const std::string& dir, const std::string& what) {
   return DatasetError("cannot write Minari dataset " + dir + ": " + what);
 }
 
-void check_writable(const std::string& dir, const Dataset& d, const MinariDescription& m) {
-  d.check_shapes();
-  if (d.empty()) throw write_error(dir, "the dataset holds no transitions");
-  if (const std::string problem = minari_id_problem(m.dataset_id); !problem.empty()) throw write_error(dir, problem);
-  if (!std::isfinite(m.observation_low) || !std::isfinite(m.observation_high) || m.observation_low > m.observation_high)
-    throw write_error(dir, "the observation bounds must be finite and ordered");
-  const struct {
-    const char* key;
-    std::optional<std::size_t> row;
-  } finite[] = {{h5::kObservations, h5::first_non_finite(d.observations)},
-                {h5::kActions, h5::first_non_finite(d.actions)},
-                {h5::kRewards, h5::first_non_finite(d.rewards)},
-                {h5::kNextObservations, h5::first_non_finite(d.next_observations)}};
-  for (const auto& f : finite)
-    if (f.row) throw write_error(dir, "'" + std::string(f.key) + "' has a non-finite value at row " + std::to_string(*f.row));
-  for (const Mat* obs : {&d.observations, &d.next_observations})
-    for (Eigen::Index c = 0; c < obs->cols(); ++c)
-      for (Eigen::Index r = 0; r < obs->rows(); ++r)
-        if (const float v = (*obs)(r, c); v < m.observation_low || v > m.observation_high)
-          throw write_error(dir, "observation entry " + std::to_string(r) + " of row " + std::to_string(c) + " is " +
-                                     number_text(v) + ", outside the observation space [" +
-                                     number_text(m.observation_low) + ", " + number_text(m.observation_high) +
-                                     "]");
-  std::error_code ec;
-  if (fs::exists(fs::path(dir) / kDataFolder, ec))
-    throw write_error(dir, (fs::path(dir) / kDataFolder).string() + " already exists (remove it, or choose another --out)");
-}
-
 // --- reading ---------------------------------------------------------------------------------
 
 class MinariReader {
@@ -360,8 +332,36 @@ std::vector<std::pair<std::size_t, std::size_t>> minari_episodes(const Dataset& 
   return episodes;
 }
 
+void check_minari_dataset(const std::string& dir, const Dataset& d, const MinariDescription& m) {
+  d.check_shapes();
+  if (d.empty()) throw write_error(dir, "the dataset holds no transitions");
+  if (const std::string problem = minari_id_problem(m.dataset_id); !problem.empty()) throw write_error(dir, problem);
+  if (!std::isfinite(m.observation_low) || !std::isfinite(m.observation_high) || m.observation_low > m.observation_high)
+    throw write_error(dir, "the observation bounds must be finite and ordered");
+  const struct {
+    const char* key;
+    std::optional<std::size_t> row;
+  } finite[] = {{h5::kObservations, h5::first_non_finite(d.observations)},
+                {h5::kActions, h5::first_non_finite(d.actions)},
+                {h5::kRewards, h5::first_non_finite(d.rewards)},
+                {h5::kNextObservations, h5::first_non_finite(d.next_observations)}};
+  for (const auto& f : finite)
+    if (f.row) throw write_error(dir, "'" + std::string(f.key) + "' has a non-finite value at row " + std::to_string(*f.row));
+  for (const Mat* obs : {&d.observations, &d.next_observations})
+    for (Eigen::Index c = 0; c < obs->cols(); ++c)
+      for (Eigen::Index r = 0; r < obs->rows(); ++r)
+        if (const float v = (*obs)(r, c); v < m.observation_low || v > m.observation_high)
+          throw write_error(dir, "observation entry " + std::to_string(r) + " of row " + std::to_string(c) + " is " +
+                                     number_text(v) + ", outside the observation space [" +
+                                     number_text(m.observation_low) + ", " + number_text(m.observation_high) +
+                                     "]");
+  std::error_code ec;
+  if (fs::exists(fs::path(dir) / kDataFolder, ec))
+    throw write_error(dir, (fs::path(dir) / kDataFolder).string() + " already exists (remove it, or choose another --out)");
+}
+
 void write_minari_dataset(const std::string& dir, const Dataset& d, const MinariDescription& description) {
-  check_writable(dir, d, description);
+  check_minari_dataset(dir, d, description);
   const auto episodes = minari_episodes(d);
   H5::Exception::dontPrint();
   std::string image;

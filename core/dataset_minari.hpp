@@ -44,6 +44,10 @@ std::string minari_id_problem(const std::string& id);
 // The episodes the layout cuts `d` into, as [first, last] transition indices (see above).
 std::vector<std::pair<std::size_t, std::size_t>> minari_episodes(const Dataset& d);
 
+// What write_minari_dataset refuses, checked without writing: throws DatasetError naming the
+// problem (a malformed id, NaN/inf, an observation outside the bounds, `dir/data` already there).
+void check_minari_dataset(const std::string& dir, const Dataset& d, const MinariDescription& description);
+
 // Writes `d` as the Minari dataset folder `dir` (its `data/` is made in a temporary folder beside
 // and renamed into place, so a killed writer leaves no partial dataset). Throws DatasetError, with
 // nothing written, when `dir/data` already exists, the id is malformed, the data hold NaN/inf or

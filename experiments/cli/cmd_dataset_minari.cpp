@@ -89,8 +89,11 @@ std::vector<Export> plan_exports(const ExportOptions& o) {
                       {"dataset", name},       {"source_file", fs::absolute(source).string()},
                       {"source_file_hash", fnv1a_hex(read_file(source, std::uintmax_t{1} << 32))}};
       e.target = (fs::path(o.out) / d.dataset_id).string();
-      if (fs::exists(fs::path(e.target) / "data", ec))
-        throw UsageError("--out: " + e.target + "/data already exists (remove it, or choose another --out)");
+      try {
+        check_minari_dataset(e.target, e.data, d);  // a target already there, an observation outside [-1, 1], …
+      } catch (const DatasetError& err) {
+        throw UsageError(err.what());
+      }
       exports.push_back(std::move(e));
     }
   }
